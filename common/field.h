@@ -1,0 +1,77 @@
+/*
+** field.h: volume fields (volScalarField, volVectorField) with their
+** boundary conditions, read from and written to time directories.
+**
+** A Field holds one value (width 1) or one vector (width 3) per cell in
+** a flat array, and one PatchField per mesh patch.  A PatchField keeps its
+** type and, where the type has one, its face values; every other entry of
+** its dictionary (inletValue, phi, ...) is kept verbatim in `extra` so that
+** a tool that only changes the internal field (setFields) writes back
+** exactly the boundary conditions it read, even of types it does not know.
+**
+** Basic types understood here: fixedValue (value required), zeroGradient,
+** calculated, slip, noSlip, empty, cyclic, symmetry, symmetryPlane.  Patch
+** entries in boundaryField are found by name, then by regex key (".*",
+** "(left|right)"), then by group ("wall" matches patches of type wall),
+** as OpenFOAM does.  Every mesh patch must be covered.
+*/
+#ifndef KIESEL_FIELD_H
+#define KIESEL_FIELD_H
+
+#include "dict.h"
+#include "err.h"
+#include "mesh.h"
+
+typedef struct PatchField {
+    char *type;
+    int n;             /* face count of the patch */
+    double *value;     /* n*width face values, or NULL when the type has none */
+    Dict *extra;       /* other entries, written back verbatim (may be NULL) */
+} PatchField;
+
+typedef struct Field {
+    char *name;
+    int width;         /* 1 scalar, 3 vector */
+    double dims[7];    /* [kg m s K mol A cd] exponents */
+    int ncells;
+    double *v;         /* ncells*width */
+    int npatches;
+    PatchField *pf;    /* one per mesh patch, in mesh order */
+} Field;
+
+typedef struct FieldWriteOpts {
+    int binary;
+    int gzip;
+    int precision;     /* ascii significant digits; <= 0 = shortest exact */
+    const char *location;  /* time name for the header, or NULL */
+} FieldWriteOpts;
+
+/* A new field with a uniform value (width numbers) and every patch set to
+   the given default type ("zeroGradient", "calculated", ...); empty
+   patches get "empty", cyclic patches "cyclic". */
+void field_init(Field *f, const Mesh *m, const char *name, int width, const double *uniform,
+                const char *default_type);
+void field_free(Field *f);
+
+/* Reads <path> (or path.gz): class must be volScalarField or
+   volVectorField; internalField uniform or nonuniform with the right
+   count; a boundaryField entry for every patch.  NaN or Inf values are
+   refused with the file and the first offending index. */
+int field_read(Field *f, const Mesh *m, const char *path, Err *e);
+/* Class of a field file without reading its data: returns width (1 or 3),
+   0 when the file is not a vol field, -1 on error. */
+int field_probe(const char *path, char **cls, Err *e);
+/* Writes atomically. */
+int field_write(const Field *f, const Mesh *m, const char *path, const FieldWriteOpts *o, Err *e);
+
+/* Face values on patch p (n*width numbers into out) as the boundary
+   condition gives them from the current internal field: fixedValue and
+   calculated -> value; zeroGradient, empty, unknown -> owner cell value;
+   slip/symmetry -> owner value without its normal component (vectors);
+   noSlip -> 0; cyclic -> average of owner and the cyclic partner's cell. */
+void field_patch_values(const Field *f, const Mesh *m, int p, double *out);
+
+/* Index of the first non-finite internal value, or -1. */
+long field_first_nonfinite(const Field *f);
+
+#endif

@@ -1,0 +1,379 @@
+/*
+** io.c: file input and atomic output.  See io.h for the contract.
+*/
+#include "io.h"
+#include "mem.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <unistd.h>
+#include <zlib.h>
+
+int io_read_stream(void *fp, const char *name, Buf *out, Err *e)
+{
+    FILE *f = fp;
+    char tmp[1 << 16];
+    size_t k;
+    buf_clear(out);
+    while ((k = fread(tmp, 1, sizeof tmp, f)) > 0) buf_put(out, tmp, k);
+    if (ferror(f)) return err_set(e, name, 0, "read error: %s", strerror(errno));
+    if (!out->p) buf_reserve(out, 0);
+    return 0;
+}
+
+static int is_gzip(const Buf *b)
+{
+    return b->n >= 2 && (unsigned char)b->p[0] == 0x1f && (unsigned char)b->p[1] == 0x8b;
+}
+
+int io_gunzip(const char *name, const void *in, size_t n, Buf *out, Err *e)
+{
+    z_stream z;
+    memset(&z, 0, sizeof z);
+    if (inflateInit2(&z, 15 + 32) != Z_OK) return err_set(e, name, 0, "cannot initialise zlib");
+    buf_clear(out);
+    buf_reserve(out, n * 4 + 1024);
+    z.next_in = (Bytef *)in;
+    z.avail_in = (uInt)0;
+    size_t left = n;
+    int rc = Z_OK;
+    while (rc != Z_STREAM_END) {
+        if (z.avail_in == 0 && left > 0) {
+            uInt chunk = left > (1u << 30) ? (1u << 30) : (uInt)left;
+            z.avail_in = chunk;
+            left -= chunk;
+        }
+        buf_reserve(out, 1 << 16);
+        z.next_out = (Bytef *)(out->p + out->n);
+        z.avail_out = (uInt)(out->cap - out->n - 1);
+        uInt before = z.avail_out;
+        rc = inflate(&z, Z_NO_FLUSH);
+        out->n += before - z.avail_out;
+        if (rc == Z_STREAM_END) {
+            /* concatenated gzip members are legal: continue with the next */
+            if (z.avail_in > 0 || left > 0) {
+                inflateReset(&z);
+                rc = Z_OK;
+            }
+            continue;
+        }
+        if (rc != Z_OK && !(rc == Z_BUF_ERROR && z.avail_in == 0 && left == 0)) {
+            inflateEnd(&z);
+            return err_set(e, name, 0, "corrupt gzip data (%s)", z.msg ? z.msg : "inflate failed");
+        }
+        if (rc == Z_BUF_ERROR || (z.avail_in == 0 && left == 0 && before == z.avail_out)) {
+            inflateEnd(&z);
+            return err_set(e, name, 0, "truncated gzip data");
+        }
+    }
+    inflateEnd(&z);
+    out->p[out->n] = '\0';
+    return 0;
+}
+
+int io_gzip(const char *name, const void *in, size_t n, Buf *out, Err *e)
+{
+    z_stream z;
+    memset(&z, 0, sizeof z);
+    /* level 6 as gzip(1); window 15 + 16 selects the gzip wrapper */
+    if (deflateInit2(&z, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+        return err_set(e, name, 0, "cannot initialise zlib");
+    buf_clear(out);
+    z.next_in = (Bytef *)in;
+    size_t left = n;
+    int rc;
+    do {
+        if (z.avail_in == 0 && left > 0) {
+            uInt chunk = left > (1u << 30) ? (1u << 30) : (uInt)left;
+            z.avail_in = chunk;
+            left -= chunk;
+        }
+        buf_reserve(out, 1 << 16);
+        z.next_out = (Bytef *)(out->p + out->n);
+        z.avail_out = (uInt)(out->cap - out->n - 1);
+        uInt before = z.avail_out;
+        rc = deflate(&z, left == 0 ? Z_FINISH : Z_NO_FLUSH);
+        out->n += before - z.avail_out;
+        if (rc == Z_STREAM_ERROR) {
+            deflateEnd(&z);
+            return err_set(e, name, 0, "gzip compression failed");
+        }
+    } while (rc != Z_STREAM_END);
+    deflateEnd(&z);
+    out->p[out->n] = '\0';
+    return 0;
+}
+
+int io_read_file(const char *path, Buf *out, char **found_path, Err *e)
+{
+    Buf raw;
+    buf_init(&raw);
+    const char *name = path;
+    char *gz = NULL;
+    if (strcmp(path, "-") == 0) {
+        if (io_read_stream(stdin, "<stdin>", &raw, e)) return buf_free(&raw), -1;
+        name = "<stdin>";
+    } else {
+        FILE *f = fopen(path, "rb");
+        if (!f && errno == ENOENT) {
+            size_t l = strlen(path);
+            gz = mem_alloc(l + 4);
+            memcpy(gz, path, l);
+            memcpy(gz + l, ".gz", 4);
+            f = fopen(gz, "rb");
+            if (f) name = gz;
+        }
+        if (!f) {
+            int en = errno;
+            free(gz);
+            return err_set(e, path, 0, "cannot open file: %s", strerror(en));
+        }
+        struct stat st;
+        if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+            fclose(f);
+            free(gz);
+            return err_set(e, path, 0, "is a directory, expected a file");
+        }
+        int rc = io_read_stream(f, name, &raw, e);
+        fclose(f);
+        if (rc) {
+            free(gz);
+            buf_free(&raw);
+            return -1;
+        }
+    }
+    if (is_gzip(&raw)) {
+        int rc = io_gunzip(name, raw.p, raw.n, out, e);
+        buf_free(&raw);
+        if (rc) {
+            free(gz);
+            return -1;
+        }
+    } else {
+        buf_free(out);
+        *out = raw;
+    }
+    if (found_path) *found_path = mem_strdup(name);
+    free(gz);
+    return 0;
+}
+
+static int write_all(int fd, const char *p, size_t n)
+{
+    while (n > 0) {
+        ssize_t k = write(fd, p, n > (1u << 30) ? (1u << 30) : n);
+        if (k < 0) {
+            if (errno == EINTR) continue;
+            return -1;
+        }
+        p += k;
+        n -= (size_t)k;
+    }
+    return 0;
+}
+
+static char *dir_of(const char *path)
+{
+    const char *s = strrchr(path, '/');
+    if (!s) return mem_strdup(".");
+    if (s == path) return mem_strdup("/");
+    return mem_strndup(path, (size_t)(s - path));
+}
+
+int io_write_atomic(const char *path, const void *data, size_t n, int gzip, Err *e)
+{
+    if (strcmp(path, "-") == 0) {
+        fflush(stdout);
+        if (write_all(STDOUT_FILENO, data, n))
+            return err_set(e, "<stdout>", 0, "write error: %s", strerror(errno));
+        return 0;
+    }
+    Buf z;
+    buf_init(&z);
+    if (gzip && io_gzip(path, data, n, &z, e)) return -1;
+    const char *bytes = gzip ? z.p : data;
+    size_t nbytes = gzip ? z.n : n;
+    size_t l = strlen(path);
+    char *target = mem_alloc(l + 4);
+    memcpy(target, path, l + 1);
+    if (gzip) memcpy(target + l, ".gz", 4);
+    char *other = mem_alloc(l + 4);
+    memcpy(other, path, l + 1);
+    if (!gzip) memcpy(other + l, ".gz", 4);
+
+    char *dir = dir_of(target);
+    const char *base = strrchr(target, '/') ? strrchr(target, '/') + 1 : target;
+    size_t tl = strlen(dir) + strlen(base) + 32;
+    char *tmp = mem_alloc(tl);
+    snprintf(tmp, tl, "%s/.%s.tmpXXXXXX", dir, base);
+    int rc = -1;
+    int fd = mkstemp(tmp);
+    if (fd < 0) {
+        err_set(e, target, 0, "cannot write file: %s", strerror(errno));
+        goto done;
+    }
+    if (write_all(fd, bytes, nbytes) || fsync(fd)) {
+        err_set(e, target, 0, "write failed: %s (old file kept)", strerror(errno));
+        close(fd);
+        unlink(tmp);
+        goto done;
+    }
+    fchmod(fd, 0644);
+    if (close(fd)) {
+        err_set(e, target, 0, "write failed: %s (old file kept)", strerror(errno));
+        unlink(tmp);
+        goto done;
+    }
+    if (rename(tmp, target)) {
+        err_set(e, target, 0, "cannot rename temporary file: %s", strerror(errno));
+        unlink(tmp);
+        goto done;
+    }
+    unlink(other);
+    rc = 0;
+done:
+    free(tmp);
+    free(dir);
+    free(target);
+    free(other);
+    buf_free(&z);
+    return rc;
+}
+
+int io_mkdir_p(const char *path, Err *e)
+{
+    char *p = mem_strdup(path);
+    size_t l = strlen(p);
+    while (l > 1 && p[l - 1] == '/') p[--l] = '\0';
+    for (char *s = p + 1; *s; s++) {
+        if (*s != '/') continue;
+        *s = '\0';
+        if (mkdir(p, 0755) && errno != EEXIST) {
+            err_set(e, p, 0, "cannot create directory: %s", strerror(errno));
+            free(p);
+            return -1;
+        }
+        *s = '/';
+    }
+    if (mkdir(p, 0755) && errno != EEXIST) {
+        err_set(e, p, 0, "cannot create directory: %s", strerror(errno));
+        free(p);
+        return -1;
+    }
+    if (!io_is_dir(p)) {
+        err_set(e, p, 0, "exists and is not a directory");
+        free(p);
+        return -1;
+    }
+    free(p);
+    return 0;
+}
+
+int io_rm_rf(const char *path, Err *e)
+{
+    struct stat st;
+    if (lstat(path, &st)) return errno == ENOENT ? 0 : err_set(e, path, 0, "cannot remove: %s", strerror(errno));
+    if (S_ISDIR(st.st_mode)) {
+        char **names;
+        int n = io_list_dir(path, &names, e);
+        if (n < 0) return -1;
+        for (int i = 0; i < n; i++) {
+            char *c = io_join(path, names[i]);
+            int rc = io_rm_rf(c, e);
+            free(c);
+            if (rc) {
+                io_free_list(names, n);
+                return -1;
+            }
+        }
+        io_free_list(names, n);
+        if (rmdir(path)) return err_set(e, path, 0, "cannot remove directory: %s", strerror(errno));
+        return 0;
+    }
+    if (unlink(path)) return err_set(e, path, 0, "cannot remove: %s", strerror(errno));
+    return 0;
+}
+
+int io_commit_dir(const char *tmpdir, const char *dst, Err *e)
+{
+    if (!io_exists(dst)) {
+        if (rename(tmpdir, dst)) return err_set(e, dst, 0, "cannot rename directory: %s", strerror(errno));
+        return 0;
+    }
+    size_t l = strlen(dst) + 16;
+    char *old = mem_alloc(l);
+    snprintf(old, l, "%s.old~", dst);
+    io_rm_rf(old, NULL);
+    if (rename(dst, old)) {
+        err_set(e, dst, 0, "cannot move old directory aside: %s", strerror(errno));
+        free(old);
+        return -1;
+    }
+    if (rename(tmpdir, dst)) {
+        err_set(e, dst, 0, "cannot rename directory: %s", strerror(errno));
+        rename(old, dst);
+        free(old);
+        return -1;
+    }
+    int rc = io_rm_rf(old, e);
+    free(old);
+    return rc;
+}
+
+int io_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+int io_is_dir(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+char *io_join(const char *a, const char *b)
+{
+    size_t la = strlen(a), lb = strlen(b);
+    char *s = mem_alloc(la + lb + 2);
+    memcpy(s, a, la);
+    size_t k = la;
+    if (la && a[la - 1] != '/') s[k++] = '/';
+    memcpy(s + k, b, lb + 1);
+    return s;
+}
+
+static int cmp_str(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+int io_list_dir(const char *path, char ***names, Err *e)
+{
+    DIR *d = opendir(path);
+    if (!d) return err_set(e, path, 0, "cannot open directory: %s", strerror(errno));
+    size_t n = 0, cap = 0;
+    char **v = NULL;
+    struct dirent *de;
+    while ((de = readdir(d))) {
+        if (!strcmp(de->d_name, ".") || !strcmp(de->d_name, "..")) continue;
+        mem_grow((void **)&v, &cap, n + 1, sizeof *v);
+        v[n++] = mem_strdup(de->d_name);
+    }
+    closedir(d);
+    if (n) qsort(v, n, sizeof *v, cmp_str);
+    *names = v;
+    return (int)n;
+}
+
+void io_free_list(char **names, int n)
+{
+    for (int i = 0; i < n; i++) free(names[i]);
+    free(names);
+}

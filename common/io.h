@@ -1,0 +1,58 @@
+/*
+** io.h: whole-file reads and atomic writes, with transparent gzip.
+**
+** Reads: io_read_file accepts "-" for standard input; for a path that does
+** not exist it tries path.gz (OpenFOAM's writeCompression convention), and
+** any input that starts with the gzip magic bytes is inflated, whatever its
+** name.  Writes: io_write_atomic writes to a temporary file in the target's
+** directory, flushes it to disk and renames it over the target, so a run
+** that is interrupted or hits a full disk leaves the old file intact.  With
+** gzip set the file is written as path.gz and a stale uncompressed path is
+** removed (and vice versa), so a time directory never holds both.
+*/
+#ifndef KIESEL_IO_H
+#define KIESEL_IO_H
+
+#include <stddef.h>
+
+#include "buf.h"
+#include "err.h"
+
+/* Reads all of path (or stdin for "-") into out (cleared first).  On
+   success, if found_path is not NULL, it receives the name actually read
+   (path or path.gz; caller frees).  Returns 0 or -1. */
+int io_read_file(const char *path, Buf *out, char **found_path, Err *e);
+
+/* Reads all of a FILE* (already open) into out. */
+int io_read_stream(void *fp, const char *name, Buf *out, Err *e);
+
+/* Inflates gzip data in place of in; returns 0 or -1. */
+int io_gunzip(const char *name, const void *in, size_t n, Buf *out, Err *e);
+/* Deflates data as a gzip stream. */
+int io_gzip(const char *name, const void *in, size_t n, Buf *out, Err *e);
+
+/* Writes data atomically to path ("-" = stdout, not atomic).  gzip != 0
+   writes path.gz instead.  Returns 0 or -1 (disk full, permission, ...). */
+int io_write_atomic(const char *path, const void *data, size_t n, int gzip, Err *e);
+
+/* Creates a directory and its parents (like mkdir -p). */
+int io_mkdir_p(const char *path, Err *e);
+/* Writes a whole directory atomically: every file is written into a
+   temporary sibling directory first; io_commit_dir renames it over dst
+   (moving an existing dst aside and removing it afterwards). */
+int io_commit_dir(const char *tmpdir, const char *dst, Err *e);
+/* Removes a directory tree (used to purge old time directories). */
+int io_rm_rf(const char *path, Err *e);
+
+int io_exists(const char *path);     /* file or directory */
+int io_is_dir(const char *path);
+/* path joined: returns a newly allocated "a/b". */
+char *io_join(const char *a, const char *b);
+
+/* Lists the entries of a directory (not "." or ".."), sorted by name.
+   Returns the count or -1; *names is an allocated array of allocated
+   strings (io_free_list). */
+int io_list_dir(const char *path, char ***names, Err *e);
+void io_free_list(char **names, int n);
+
+#endif
