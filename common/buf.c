@@ -52,11 +52,16 @@ void buf_putc(Buf *b, char c)
 
 void buf_printf(Buf *b, const char *fmt, ...)
 {
+    char tmp[256];
     va_list ap;
     va_start(ap, fmt);
-    int len = vsnprintf(NULL, 0, fmt, ap);
+    int len = vsnprintf(tmp, sizeof tmp, fmt, ap);
     va_end(ap);
     if (len < 0) return;
+    if ((size_t)len < sizeof tmp) {
+        buf_put(b, tmp, (size_t)len);
+        return;
+    }
     buf_reserve(b, (size_t)len);
     va_start(ap, fmt);
     vsnprintf(b->p + b->n, (size_t)len + 1, fmt, ap);
