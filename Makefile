@@ -43,6 +43,7 @@ TEST_BIN := $(patsubst tests/common/%.c,$(B)/tests/%,$(TEST_SRC))
 FUZZ_SRC := $(wildcard tests/fuzz/fuzz_*.c)
 
 .PHONY: all test check bench fuzz validate clean deps tutorial
+.SECONDARY:
 all: $(TOOL_BIN) $(TEST_BIN)
 
 $(B)/common/%.o: common/%.c $(wildcard common/*.h)
@@ -57,8 +58,10 @@ $(B)/tools/%.o: tools/%.c $(wildcard common/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
 
+tool_objs = $(patsubst tools/%.c,$(B)/tools/%.o,$(wildcard tools/$(1)/*.c))
+
 .SECONDEXPANSION:
-$(BIN)/%: $$(patsubst tools/%.c,$(B)/tools/%.o,$$(wildcard tools/$$*/*.c)) $(LIB)
+$(BIN)/%: $$(call tool_objs,$$*) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(LDFLAGS) $(filter %.o,$^) $(LIB) $(LDLIBS) -o $@
 

@@ -11,9 +11,12 @@
 **
 ** Basic types understood here: fixedValue (value required), zeroGradient,
 ** calculated, slip, noSlip, empty, cyclic, symmetry, symmetryPlane.  Patch
-** entries in boundaryField are found by name, then by regex key (".*",
-** "(left|right)"), then by group ("wall" matches patches of type wall),
-** as OpenFOAM does.  Every mesh patch must be covered.
+** entries in boundaryField are found as OpenFOAM's readField finds them:
+** by name, then by group ("wall" matches patches of type wall or with wall
+** in their inGroups; the last group entry wins), then by regex key (".*",
+** "(left|right)"; the last match wins).  Every mesh patch must be covered,
+** except that a patch of a constraint type (empty, cyclic, symmetry,
+** symmetryPlane, wedge) without an entry by name or group takes that type.
 */
 #ifndef KIESEL_FIELD_H
 #define KIESEL_FIELD_H
@@ -47,8 +50,10 @@ typedef struct FieldWriteOpts {
 } FieldWriteOpts;
 
 /* A new field with a uniform value (width numbers) and every patch set to
-   the given default type ("zeroGradient", "calculated", ...); empty
-   patches get "empty", cyclic patches "cyclic". */
+   the given default type ("zeroGradient", "calculated", ...); patches of
+   a constraint type (empty, cyclic, symmetry, symmetryPlane, wedge) get
+   that type, as OpenFOAM requires.  Types with a value (fixedValue,
+   calculated) get the uniform value on their faces. */
 void field_init(Field *f, const Mesh *m, const char *name, int width, const double *uniform,
                 const char *default_type);
 void field_free(Field *f);
@@ -71,7 +76,7 @@ int field_write(const Field *f, const Mesh *m, const char *path, const FieldWrit
    noSlip -> 0; cyclic -> average of owner and the cyclic partner's cell. */
 void field_patch_values(const Field *f, const Mesh *m, int p, double *out);
 
-/* Index of the first non-finite internal value, or -1. */
+/* Cell index of the first non-finite internal value, or -1. */
 long field_first_nonfinite(const Field *f);
 
 #endif

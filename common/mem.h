@@ -18,6 +18,6 @@ char *mem_strndup(const char *s, size_t n);
 /* Grows *p (of *cap elements of size elem) so it holds at least need. */
 void mem_grow(void **p, size_t *cap, size_t need, size_t elem);
 
-#define MEM_NEW(T, n) ((T *)mem_calloc((size_t)(n) ? (size_t)(n) : 1, sizeof(T)))
+#define MEM_NEW(T, n) ((T *)mem_calloc((size_t)(n) > 0 ? (size_t)(n) : 1, sizeof(T)))
 
 #endif

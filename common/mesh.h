@@ -37,6 +37,9 @@ typedef struct Patch {
     int start, size;   /* face range */
     char *neighbour;   /* cyclic: neighbourPatch, else NULL */
     char *groups;      /* inGroups as written, e.g. "1(wall)", or NULL */
+                       /* (NULL stands for the default: "1(<type>)" for wall
+                          and constraint types, none for patch; the reader
+                          turns the default back into NULL) */
 } Patch;
 
 typedef struct CartGrid {
@@ -80,6 +83,8 @@ void mesh_free(Mesh *m);
    present); dir "-" reads the stream form from stdin.  Checks sizes and
    index ranges (every error names the file and line); does not check the
    ordering invariants (mesh_check does). */
+/* (m need not be initialised; it is overwritten, and left empty after a
+   failure, so mesh_free is always safe.) */
 int mesh_read(Mesh *m, const char *dir, Err *e);
 /* Writes the files into dir (created if needed), each atomically; dir "-"
    writes the stream form to stdout. */

@@ -39,6 +39,7 @@ typedef struct Control {
     int adjustTimeStep;
     double maxCo, maxDeltaT;
     time_t mtime;          /* of controlDict when read */
+    long mtime_ns;         /* nanoseconds of that mtime (edits within a second) */
 } Control;
 
 /* Keywords of controlDict with defaults, for -help and checking. */
@@ -65,7 +66,11 @@ void runtime_free_times(TimeDir *t, int n);
 
 /* Selects from a sorted list by a -time spec ("0.1", "0.1,0.5", "0.1:0.5",
    ":0.5", "0.2:"), -latestTime, -noZero; keeps the selected entries in
-   place and returns their count, or -1 with e on a malformed spec. */
+   place and returns their count, or -1 with e on a malformed spec.
+   As in OpenFOAM the result is the union of the -time selection and the
+   latest time; -noZero then drops time 0.  Values match within a relative
+   1e-9.  The names of dropped entries are freed and set to NULL, so
+   runtime_free_times works with either the old or the new count. */
 int runtime_select(TimeDir *t, int n, const char *spec, int latest, int nozero, Err *e);
 
 /* Writes <case>/<name>/uniform/time (value, name, index, deltaT, deltaT0). */

@@ -1,17 +1,24 @@
 /*
 ** vtk.h: legacy VTK output (no libvtk dependency).
 **
-** One UNSTRUCTURED_GRID file per time: 2-D meshes (one cell thick with
-** empty patches) are written as the polygons of one empty side (VTK_POLYGON,
-** type 7, z of that side), 3-D meshes as VTK_POLYHEDRON (type 42) for every
-** cell, which VTK >= 9 reads from legacy files (the cell connectivity holds
-** the face stream: nFaces, then per face nPts and its point ids).  Cell
-** data: every field (scalars as SCALARS-free FIELD arrays, vectors with 3
-** components) in double precision; optional POINT_DATA (inverse-volume
-** weighted average of the cells around each point).  TimeValue is stored as
-** FIELD FieldData.  Binary legacy files are big-endian, as VTK requires.
-** Boundary patches go to separate POLYDATA files.  A .vtk.series file (JSON,
-** ParaView's format) lists the files with their time values.
+** One UNSTRUCTURED_GRID file per time ("# vtk DataFile Version 2.0", as
+** foamToVTK -legacy).  2-D meshes (one cell thick with empty patches) are
+** written as the polygons of the lower empty side (VTK_POLYGON, type 7,
+** counter-clockwise about +axis, coordinates of that side).  3-D meshes:
+** cells that are exact hexahedra as VTK_HEXAHEDRON (type 12), every other
+** cell as VTK_POLYHEDRON (type 42), which VTK >= 9 reads from legacy files
+** (the cell connectivity holds the face stream: nFaces, then per face nPts
+** and its point ids, normals pointing out of the cell).  Cell data: every
+** field as a FIELD array of doubles (scalars 1 component, vectors 3);
+** optional POINT_DATA (volume-weighted average of the cells around each
+** point; patches: face-area weighted).  TimeValue is stored as FIELD
+** FieldData.  Binary legacy files are big-endian, as VTK requires.
+** Boundary patches go to separate POLYDATA files (POLYGONS, values from
+** field_patch_values).  A .vtk.series file (JSON, ParaView's format) lists
+** the files with their time values.  Every file is written atomically.
+** Geometry: point data needs m->cell_vol (internal) or m->face_area
+** (patches), from mesh_geometry; cell->face addressing is used when present
+** and built internally otherwise.
 */
 #ifndef KIESEL_VTK_H
 #define KIESEL_VTK_H
@@ -27,7 +34,11 @@ typedef struct VtkOpts {
     const char *title; /* second header line */
 } VtkOpts;
 
-/* The internal mesh with cell data. fields may be NULL when nfields == 0. */
+/* Defaults: binary, no point data, time 0, title "Kiesel". */
+void vtk_opts_init(VtkOpts *o);
+
+/* The internal mesh with cell data. fields may be NULL when nfields == 0;
+   o NULL means the defaults. */
 int vtk_write_internal(const char *path, const Mesh *m, const Field *fields, int nfields,
                        const VtkOpts *o, Err *e);
 /* One patch as POLYDATA with the boundary values of the fields. */

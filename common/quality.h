@@ -1,0 +1,92 @@
+/*
+** quality.h: grid quality measures (checkMesh's, for Kiesel's grids).
+**
+** Per-face and per-cell measures use OpenFOAM's definitions
+** (primitiveMeshTools.C, v1912), so numbers can be compared with checkMesh:
+**   non-orthogonality  angle between d = C_N - C_P and the face area vector
+**                      S; the maximum is over faces, the "average" is
+**                      acos(mean cos), as checkMesh prints it;
+**   skewness           |C_f - (intersection of d with the face plane)|
+**                      normalised by the face's extent in that direction
+**                      (boundary faces use the face-normal projection of
+**                      C_f - C_P for d);
+**   aspect ratio       max/min of the per-axis sums of |S_k| over the
+**                      cell's faces (non-empty axes only), and in 3-D also
+**                      (sum |S_k|)/6 / V^(2/3).
+** Faces of a cyclic patch are measured as internal faces, with the partner
+** cell's centre translated by the offset between the paired face centres.
+**
+** A grid is broken (quality_check fails) when a cell is not closed
+** (|sum of outward S| > 1e-12 of the cell's surface), a face normal does
+** not point from its owner's centre to the neighbour's (or out of a
+** boundary cell), a cell volume is not positive, or the polyMesh ordering
+** invariants (mesh_check) fail.  Non-orthogonality > 70 deg, skewness > 4
+** and aspect ratio > 1000 are only counted (cut cells can have them).
+*/
+#ifndef KIESEL_QUALITY_H
+#define KIESEL_QUALITY_H
+
+#include "buf.h"
+#include "err.h"
+#include "mesh.h"
+
+#define QUALITY_CLOSED_TOL 1e-12
+#define QUALITY_NONORTH_SEVERE 70.0
+#define QUALITY_SKEW_HIGH 4.0
+#define QUALITY_ASPECT_HIGH 1000.0
+
+typedef struct Quality {
+    int ndims;                 /* geometric dimensions (3 minus empty directions) */
+    int empty[3];              /* 1 for an empty (2-D) direction */
+    double lo[3], hi[3];       /* bounding box */
+
+    double vol_total;
+    double vol_min, vol_max;   /* and the cells holding them */
+    int vol_min_cell, vol_max_cell;
+    int has_parent;            /* Cartesian extras present */
+    double vol_min_ratio, vol_max_ratio;  /* vol_min (vol_max) cell / its parent's volume */
+    double frac_min, frac_max;            /* min / max over cells of volume / parent volume */
+    int ncut;                  /* cells smaller than their parent */
+    int nmerged;               /* cells reaching outside their parent cell */
+
+    double open_max;           /* max |sum S| / sum |S| */
+    int nopen, open_cell;      /* cells above QUALITY_CLOSED_TOL, first one */
+    double open_first;         /* its value */
+
+    int norient, orient_face, orient_cell;  /* faces pointing the wrong way, first */
+    int nnegvol, negvol_cell;  /* cells with volume <= 0, first */
+
+    double nonorth_max, nonorth_avg;  /* degrees */
+    int nonorth_face;          /* face of the maximum */
+    int nnonorth;              /* faces above QUALITY_NONORTH_SEVERE */
+    double skew_max;
+    int skew_face, nskew;      /* face of the maximum; faces above QUALITY_SKEW_HIGH */
+    double aspect_max;
+    int aspect_cell, naspect;  /* cell of the maximum; cells above QUALITY_ASPECT_HIGH */
+} Quality;
+
+/* cos of the non-orthogonality angle of area vector S against d (OpenFOAM:
+   d.S/(|d||S| + ROOTVSMALL)). */
+double quality_ortho(const double d[3], const double S[3]);
+/* Skewness of face f (points, Sf, Cf of the mesh) between cell centres
+   cown and cnei. */
+double quality_skewness(const Mesh *m, int f, const double cown[3], const double cnei[3]);
+/* Skewness of boundary face f of the cell with centre cown. */
+double quality_boundary_skewness(const Mesh *m, int f, const double cown[3]);
+/* Closedness |sum S| / sum |S| (outward S) and aspect ratio of cell c;
+   empty[k] marks empty directions (NULL: none). */
+void quality_cell(const Mesh *m, int c, const int empty[3], double *open, double *aspect);
+/* Directions normal to the faces of empty patches (OpenFOAM's geometricD). */
+void quality_empty_dirs(const Mesh *m, int empty[3]);
+
+/* Computes every measure.  Computes the cell faces and the geometry of m
+   first when they are missing. */
+void quality_measure(Mesh *m, Quality *q);
+/* 0 when the grid is sound; else -1 with e naming the first bad cell of
+   the first failed check ("cell 17: not closed, |sum S| = 3e-04 of
+   surface").  *nfailed (may be NULL) receives the number of failed checks. */
+int quality_check(const Mesh *m, const Quality *q, int *nfailed, Err *e);
+/* checkMesh-like report of q (counts, box, volumes, measures). */
+void quality_report(const Mesh *m, const Quality *q, Buf *out);
+
+#endif

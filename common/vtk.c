@@ -1,0 +1,701 @@
+/*
+** vtk.c: legacy VTK files for ParaView, written without libvtk.  See vtk.h.
+**
+** Version line.  "# vtk DataFile Version 2.0", as foamToVTK -legacy writes.
+** VTK 9's legacy reader accepts polyhedra (type 42) under every version
+** line below 5.0 (checked with VTK 9.1 for 2.0, 3.0 and 4.2: one cube read
+** back as 42 with 6 faces and volume 1); 5.1 would need the OFFSETS /
+** CONNECTIVITY layout, which VTK < 9 (older ParaView) cannot read.
+**
+** Cells.  A file is built from a Grid: the points written (a subset of the
+** mesh points for 2-D meshes and patches), and per cell a VTK type and its
+** connectivity in written-point numbers.  Three shapes occur:
+**   - 3-D cells that are exact hexahedra (six quadrilaterals, eight points,
+**     joined like a cube) are VTK_HEXAHEDRON (12), as foamToVTK does: ParaView
+**     slices, clips and renders hexahedra much faster than polyhedra and
+**     every filter supports them.  Block grids are all hexahedra.  VTK reads
+**     a hexahedron's faces as bilinear; ours are planar, so volumes agree.
+**   - every other 3-D cell (cut, merged, split-face cells) is a
+**     VTK_POLYHEDRON (42): connectivity "nFaces, then nPts and the point ids
+**     of each face", faces ordered so that their normals point out of the
+**     cell (OpenFOAM's order for owned faces, reversed for neighbour faces).
+**   - 2-D meshes (one cell thick between empty patches, mesh_empty_axis >= 0)
+**     are written as one VTK_POLYGON (7) per cell: the cell's face on the
+**     lower empty side (the one whose outward normal points along -axis),
+**     with its points reversed so that it turns counter-clockwise about
+**     +axis.  Only the points of that side are written.  Patches are
+**     POLYDATA POLYGONS in OpenFOAM's order (normals out of the domain).
+**
+** Data.  Every field is a FIELD array of doubles with 1 or 3 components
+** (ParaView shows 3-component arrays as vectors: Magnitude/X/Y/Z colouring,
+** glyph orientation).  SCALARS/VECTORS sections are not used because VTK's
+** reader keeps only the first SCALARS and the first VECTORS section of a
+** dataset unless told otherwise (checked: the second of each is dropped).
+** TimeValue is dataset FieldData, as in foamToVTK.  Point data (optional)
+** is the average of the values of the cells around each point weighted by
+** cell volume (patches: face area), so tiny cut cells, whose values are the
+** least reliable, weigh least; points that no cell of the file touches, or
+** whose cells all have zero size, get 0.
+**
+** Encoding.  Binary legacy files are big-endian: every int32 and float64 is
+** assembled byte by byte from its most significant end, so the code is the
+** same on any host.  Ascii numbers are the shortest decimal that reads back
+** to the same double (foam_fmt_double), so ascii and binary files hold the
+** same values.  Array names are percent-encoded where VTK's reader would
+** split them (blanks, '%', non-ASCII), as VTK's own writer does.  Counts are
+** int32 in the format: a mesh whose connectivity would exceed that is
+** refused rather than written wrongly.
+*/
+#include "vtk.h"
+#include "buf.h"
+#include "foam.h"
+#include "geom.h"
+#include "io.h"
+#include "mem.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { VTK_POLYGON = 7, VTK_HEXAHEDRON = 12, VTK_POLYHEDRON = 42 };
+
+/* What a file shows: points (indices into the mesh points), cells as
+   connectivity runs conn[off[c]..off[c+1]-1] of written-point numbers, and
+   the per-cell weights of the point average. */
+typedef struct Grid {
+    int np;
+    int *pts;            /* np mesh point ids, or NULL: all mesh points in order */
+    int nc;
+    int *off;            /* nc+1 */
+    int *conn;
+    unsigned char *type; /* nc VTK cell types */
+    double *w;           /* nc weights (volumes or areas), or NULL */
+} Grid;
+
+/* One data array: ntuples (= Grid.nc) tuples of width doubles. */
+typedef struct Arr {
+    const char *name;
+    int width;
+    const double *v;
+} Arr;
+
+static void grid_free(Grid *g)
+{
+    free(g->pts);
+    free(g->off);
+    free(g->conn);
+    free(g->type);
+    free(g->w);
+    memset(g, 0, sizeof *g);
+}
+
+void vtk_opts_init(VtkOpts *o)
+{
+    o->binary = 1;
+    o->point_data = 0;
+    o->time = 0;
+    o->title = NULL;
+}
+
+/* ---- encoding ---- */
+
+static void put_int(Buf *b, long v)
+{
+    char s[24];
+    int n = 0;
+    unsigned long u = v < 0 ? 0UL - (unsigned long)v : (unsigned long)v;
+    do {
+        s[sizeof s - 1 - n++] = (char)('0' + u % 10);
+        u /= 10;
+    } while (u);
+    if (v < 0) s[sizeof s - 1 - n++] = '-';
+    buf_put(b, s + sizeof s - n, (size_t)n);
+}
+
+static void put_be32(Buf *b, int32_t v)
+{
+    uint32_t u = (uint32_t)v;
+    unsigned char c[4] = {(unsigned char)(u >> 24), (unsigned char)(u >> 16),
+                          (unsigned char)(u >> 8), (unsigned char)u};
+    buf_put(b, c, 4);
+}
+
+static void put_be64(Buf *b, double x)
+{
+    uint64_t u;
+    memcpy(&u, &x, 8);
+    unsigned char c[8];
+    for (int k = 0; k < 8; k++) c[k] = (unsigned char)(u >> (56 - 8 * k));
+    buf_put(b, c, 8);
+}
+
+/* n tuples of width doubles: ascii one tuple per line, binary raw. */
+static void put_doubles(Buf *b, const double *v, size_t n, int width, int binary)
+{
+    buf_reserve(b, n * (size_t)width * (binary ? 8 : 12));
+    for (size_t i = 0; i < n; i++) {
+        for (int k = 0; k < width; k++) {
+            double x = v[i * (size_t)width + (size_t)k];
+            if (binary) {
+                put_be64(b, x);
+            } else {
+                if (k) buf_putc(b, ' ');
+                foam_put_double(b, x, 0);
+            }
+        }
+        if (!binary) buf_putc(b, '\n');
+    }
+    if (binary) buf_putc(b, '\n');
+}
+
+/* Array names: VTK's reader splits at blanks and decodes %XX. */
+static void put_name(Buf *b, const char *s)
+{
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        if (*p <= ' ' || *p > '~' || *p == '%') buf_printf(b, "%%%02X", *p);
+        else buf_putc(b, (char)*p);
+    }
+}
+
+/* The title line may hold at most 255 characters and no newline. */
+static void put_title(Buf *b, const char *t)
+{
+    if (!t || !*t) t = "Kiesel";
+    size_t n = 0;
+    for (const char *p = t; *p && n < 255; p++, n++)
+        buf_putc(b, (*p == '\n' || *p == '\r') ? ' ' : *p);
+    buf_putc(b, '\n');
+}
+
+/* ---- cells of a 3-D mesh ---- */
+
+/* Cell -> face lists: the mesh's own (mesh_cell_faces) or built here, so
+   the writer also works on a mesh that only has owner/neighbour. */
+static void cell_faces(const Mesh *m, int **off, int **idx, int *own)
+{
+    if (m->cell_off && m->cell_faces) {
+        *off = m->cell_off;
+        *idx = m->cell_faces;
+        *own = 0;
+        return;
+    }
+    int *o = mem_calloc((size_t)m->ncells + 1, sizeof(int));
+    for (int f = 0; f < m->nfaces; f++) {
+        o[m->owner[f] + 1]++;
+        if (f < m->ninternal) o[m->neighbour[f] + 1]++;
+    }
+    for (int c = 0; c < m->ncells; c++) o[c + 1] += o[c];
+    int *x = MEM_NEW(int, o[m->ncells]);
+    int *fill = mem_calloc((size_t)m->ncells + 1, sizeof(int));
+    for (int f = 0; f < m->nfaces; f++) {
+        int c = m->owner[f];
+        x[o[c] + fill[c]++] = f;
+        if (f < m->ninternal) {
+            c = m->neighbour[f];
+            x[o[c] + fill[c]++] = f;
+        }
+    }
+    free(fill);
+    *off = o;
+    *idx = x;
+    *own = 1;
+}
+
+static int face_size(const Mesh *m, int f) { return m->face_off[f + 1] - m->face_off[f]; }
+
+/* Points of face f (n of them) in the order whose normal points out of
+   cell c (inward != 0: into it). */
+static void face_loop(const Mesh *m, int f, int c, int inward, int *q)
+{
+    const int *p = m->face_idx + m->face_off[f];
+    int n = face_size(m, f);
+    int flip = (m->owner[f] == c) == (inward != 0);
+    for (int i = 0; i < n; i++) q[i] = flip ? p[n - 1 - i] : p[i];
+}
+
+static int find4(const int *q, int x)
+{
+    for (int i = 0; i < 4; i++)
+        if (q[i] == x) return i;
+    return -1;
+}
+
+/* Side face q (4 points) joins bottom edge (b[i], b[i+1]) to the top: records
+   the top points above b[i] and b[i+1], checking agreement with what other
+   side faces said.  Returns 0 when q is not such a face. */
+static int hex_side(const int *b, const int *q, int *t, int *covered)
+{
+    int i = -1;
+    for (int k = 0; k < 4; k++) {
+        int a = find4(q, b[k]), n = find4(q, b[(k + 1) % 4]);
+        if (a >= 0 && n >= 0 && ((a + 1) % 4 == n || (n + 1) % 4 == a)) i = k;
+    }
+    if (i < 0 || covered[i]) return 0;
+    covered[i] = 1;
+    int j = (i + 1) % 4;
+    int a = find4(q, b[i]), n = find4(q, b[j]);
+    int dir = (a + 1) % 4 == n ? 1 : 3;            /* step from b[i] to b[j] in q */
+    int ta = q[(a + 4 - dir) % 4], tn = q[(n + dir) % 4];
+    if (find4(b, ta) >= 0 || find4(b, tn) >= 0) return 0;
+    if ((t[i] >= 0 && t[i] != ta) || (t[j] >= 0 && t[j] != tn)) return 0;
+    t[i] = ta;
+    t[j] = tn;
+    return 1;
+}
+
+/* VTK hexahedron points of cell c (faces cf[0..5]) into v[8], returning 1,
+   or 0 when the cell is not an exact hexahedron.  Bottom = first face turned
+   to face into the cell (VTK: bottom normal towards the top), top point i
+   above bottom point i. */
+static int hex_points(const Mesh *m, int c, const int *cf, int nf, int v[8])
+{
+    if (nf != 6) return 0;
+    for (int k = 0; k < 6; k++)
+        if (face_size(m, cf[k]) != 4) return 0;
+    int b[4], t[4] = {-1, -1, -1, -1}, covered[4] = {0, 0, 0, 0}, top = -1;
+    face_loop(m, cf[0], c, 1, b);
+    for (int i = 0; i < 4; i++)
+        for (int j = i + 1; j < 4; j++)
+            if (b[i] == b[j]) return 0;
+    for (int k = 1; k < 6; k++) {
+        int q[4], shared = 0;
+        face_loop(m, cf[k], c, 0, q);
+        for (int i = 0; i < 4; i++) shared += find4(b, q[i]) >= 0;
+        if (shared == 0) {
+            if (top >= 0) return 0;
+            top = k;
+        } else if (shared != 2 || !hex_side(b, q, t, covered)) {
+            return 0;
+        }
+    }
+    if (top < 0) return 0;
+    int q[4];
+    face_loop(m, cf[top], c, 0, q);
+    int p = find4(q, t[0]);
+    if (p < 0) return 0;
+    int fwd = 1, bwd = 1;
+    for (int i = 1; i < 4; i++) {
+        fwd &= q[(p + i) % 4] == t[i];
+        bwd &= q[(p + 4 - i) % 4] == t[i];
+    }
+    if (!fwd && !bwd) return 0;
+    memcpy(v, b, sizeof b);
+    memcpy(v + 4, t, sizeof t);
+    return 1;
+}
+
+static int too_big(long n, const char *path, Err *e)
+{
+    if (n <= INT_MAX) return 0;
+    err_set(e, path, 0, "mesh too large for the legacy VTK format (%ld connectivity entries)", n);
+    return 1;
+}
+
+/* All mesh points; hexahedra and outward-oriented polyhedra. */
+static int grid_3d(const Mesh *m, Grid *g, const char *path, Err *e)
+{
+    int *off, *idx, own;
+    cell_faces(m, &off, &idx, &own);
+    g->np = m->npoints;
+    g->nc = m->ncells;
+    g->off = mem_alloc(((size_t)m->ncells + 1) * sizeof(int));
+    g->type = MEM_NEW(unsigned char, m->ncells);
+    long total = 0;
+    for (int c = 0; c < m->ncells; c++) {
+        long len = 1;
+        for (int k = off[c]; k < off[c + 1]; k++) len += 1 + face_size(m, idx[k]);
+        total += len > 8 ? len : 8;
+    }
+    int rc = 0;
+    if (too_big(total + m->ncells, path, e)) {
+        rc = -1;
+    } else {
+        g->conn = MEM_NEW(int, total);
+        int n = 0;
+        g->off[0] = 0;
+        for (int c = 0; c < m->ncells; c++) {
+            const int *cf = idx + off[c];
+            int nf = off[c + 1] - off[c];
+            if (hex_points(m, c, cf, nf, g->conn + n)) {
+                g->type[c] = VTK_HEXAHEDRON;
+                n += 8;
+            } else {
+                g->type[c] = VTK_POLYHEDRON;
+                g->conn[n++] = nf;
+                for (int k = 0; k < nf; k++) {
+                    g->conn[n++] = face_size(m, cf[k]);
+                    face_loop(m, cf[k], c, 0, g->conn + n);
+                    n += face_size(m, cf[k]);
+                }
+            }
+            g->off[c + 1] = n;
+        }
+    }
+    if (own) {
+        free(off);
+        free(idx);
+    }
+    return rc;
+}
+
+/* ---- polygons: 2-D meshes and patches ---- */
+
+/* Twice the area vector's component along axis (Newell's formula), enough
+   to tell which way a face of an empty patch points. */
+static double face_normal_along(const Mesh *m, int f, int axis)
+{
+    int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const int *p = m->face_idx + m->face_off[f];
+    int n = face_size(m, f);
+    double s = 0;
+    for (int i = 0; i < n; i++) {
+        const double *a = m->points + 3 * (size_t)p[i], *b = m->points + 3 * (size_t)p[(i + 1) % n];
+        s += (a[u] - b[u]) * (a[v] + b[v]);
+    }
+    return s;
+}
+
+/* Grid of polygons from faces[0..nc-1], reversed when rev; the points are
+   those of the faces, numbered in mesh order. */
+static int grid_polygons(const Mesh *m, const int *faces, int nc, int rev, Grid *g,
+                         const char *path, Err *e)
+{
+    long total = 0;
+    for (int c = 0; c < nc; c++) total += face_size(m, faces[c]);
+    if (too_big(total + nc, path, e)) return -1;
+    int *map = mem_alloc(((size_t)m->npoints + 1) * sizeof(int));
+    for (int p = 0; p < m->npoints; p++) map[p] = -1;
+    for (int c = 0; c < nc; c++)
+        for (int k = m->face_off[faces[c]]; k < m->face_off[faces[c] + 1]; k++) map[m->face_idx[k]] = 0;
+    g->np = 0;
+    for (int p = 0; p < m->npoints; p++)
+        if (map[p] == 0) map[p] = g->np++;
+    g->pts = MEM_NEW(int, g->np);
+    for (int p = 0; p < m->npoints; p++)
+        if (map[p] >= 0) g->pts[map[p]] = p;
+    g->nc = nc;
+    g->off = mem_alloc(((size_t)nc + 1) * sizeof(int));
+    g->type = MEM_NEW(unsigned char, nc);
+    g->conn = MEM_NEW(int, total);
+    int n = 0;
+    g->off[0] = 0;
+    for (int c = 0; c < nc; c++) {
+        const int *p = m->face_idx + m->face_off[faces[c]];
+        int np = face_size(m, faces[c]);
+        for (int i = 0; i < np; i++) g->conn[n++] = map[p[rev ? np - 1 - i : i]];
+        g->type[c] = VTK_POLYGON;
+        g->off[c + 1] = n;
+    }
+    free(map);
+    return 0;
+}
+
+/* Each cell's face on the lower empty side (outward normal along -axis). */
+static int grid_2d(const Mesh *m, int axis, Grid *g, const char *path, Err *e)
+{
+    int *lower = mem_alloc(((size_t)m->ncells + 1) * sizeof(int));
+    for (int c = 0; c < m->ncells; c++) lower[c] = -1;
+    int rc = 0;
+    for (int p = 0; p < m->npatches && rc == 0; p++) {
+        const Patch *pa = &m->patches[p];
+        if (!pa->type || strcmp(pa->type, "empty")) continue;
+        for (int f = pa->start; f < pa->start + pa->size; f++) {
+            if (face_normal_along(m, f, axis) >= 0) continue;
+            int c = m->owner[f];
+            if (lower[c] >= 0) {
+                rc = err_set(e, path, 0, "2-D mesh: cell %d has two faces (%d, %d) on the lower empty side",
+                             c, lower[c], f);
+                break;
+            }
+            lower[c] = f;
+        }
+    }
+    for (int c = 0; c < m->ncells && rc == 0; c++)
+        if (lower[c] < 0)
+            rc = err_set(e, path, 0, "2-D mesh: cell %d has no face on the lower empty side (normal -%c)",
+                         c, "xyz"[axis]);
+    if (rc == 0) rc = grid_polygons(m, lower, m->ncells, 1, g, path, e);
+    free(lower);
+    return rc;
+}
+
+/* ---- writing ---- */
+
+static void put_points(Buf *b, const Mesh *m, const Grid *g, int binary)
+{
+    buf_printf(b, "POINTS %d double\n", g->np);
+    if (!g->pts) {
+        put_doubles(b, m->points, (size_t)g->np, 3, binary);
+        return;
+    }
+    size_t nx = 3 * (size_t)g->np;
+    double *x = MEM_NEW(double, nx);
+    for (int i = 0; i < g->np; i++) memcpy(x + 3 * (size_t)i, m->points + 3 * (size_t)g->pts[i], 3 * sizeof(double));
+    put_doubles(b, x, (size_t)g->np, 3, binary);
+    free(x);
+}
+
+/* CELLS/POLYGONS: per cell its entry count, then the entries. */
+static void put_cells(Buf *b, const Grid *g, const char *keyword, int binary)
+{
+    buf_printf(b, "%s %d %d\n", keyword, g->nc, g->nc + g->off[g->nc]);
+    for (int c = 0; c < g->nc; c++) {
+        int n = g->off[c + 1] - g->off[c];
+        const int *x = g->conn + g->off[c];
+        if (binary) {
+            put_be32(b, n);
+            for (int i = 0; i < n; i++) put_be32(b, x[i]);
+            continue;
+        }
+        put_int(b, n);
+        for (int i = 0; i < n; i++) {
+            buf_putc(b, ' ');
+            put_int(b, x[i]);
+        }
+        buf_putc(b, '\n');
+    }
+    if (binary) buf_putc(b, '\n');
+}
+
+static void put_types(Buf *b, const Grid *g, int binary)
+{
+    buf_printf(b, "CELL_TYPES %d\n", g->nc);
+    for (int c = 0; c < g->nc; c++) {
+        if (binary) {
+            put_be32(b, g->type[c]);
+        } else {
+            put_int(b, g->type[c]);
+            buf_putc(b, '\n');
+        }
+    }
+    if (binary) buf_putc(b, '\n');
+}
+
+static void put_arrays(Buf *b, const Arr *a, int na, int ntuples, int binary)
+{
+    buf_printf(b, "FIELD FieldData %d\n", na);
+    for (int i = 0; i < na; i++) {
+        put_name(b, a[i].name);
+        buf_printf(b, " %d %d double\n", a[i].width, ntuples);
+        put_doubles(b, a[i].v, (size_t)ntuples, a[i].width, binary);
+    }
+}
+
+/* Distinct written points of cell c into out; returns their count.
+   stamp[p] == c marks points already seen for this cell. */
+static int cell_points(const Grid *g, int c, int *stamp, int *out)
+{
+    int n = 0, k = g->off[c], end = g->off[c + 1];
+    if (g->type[c] != VTK_POLYHEDRON) {
+        for (; k < end; k++)
+            if (stamp[g->conn[k]] != c) stamp[g->conn[k]] = c, out[n++] = g->conn[k];
+        return n;
+    }
+    int nf = g->conn[k++];
+    for (int f = 0; f < nf; f++) {
+        int np = g->conn[k++];
+        for (int i = 0; i < np; i++, k++)
+            if (stamp[g->conn[k]] != c) stamp[g->conn[k]] = c, out[n++] = g->conn[k];
+    }
+    return n;
+}
+
+/* Weighted average of the cell values around each point (see top). */
+static double *point_average(const Grid *g, const Arr *a)
+{
+    size_t w = (size_t)a->width;
+    size_t nacc = (size_t)g->np * w;
+    double *acc = MEM_NEW(double, nacc);
+    double *sum = MEM_NEW(double, g->np);
+    int *stamp = MEM_NEW(int, g->np), *pts = NULL;
+    int maxn = 0;
+    for (int c = 0; c < g->nc; c++)
+        if (g->off[c + 1] - g->off[c] > maxn) maxn = g->off[c + 1] - g->off[c];
+    pts = MEM_NEW(int, maxn);
+    for (int p = 0; p < g->np; p++) stamp[p] = -1;
+    for (int c = 0; c < g->nc; c++) {
+        int n = cell_points(g, c, stamp, pts);
+        double wc = fabs(g->w[c]);
+        for (int i = 0; i < n; i++) {
+            sum[pts[i]] += wc;
+            for (size_t k = 0; k < w; k++) acc[(size_t)pts[i] * w + k] += wc * a->v[(size_t)c * w + k];
+        }
+    }
+    for (int p = 0; p < g->np; p++)
+        if (sum[p] > 0)
+            for (size_t k = 0; k < w; k++) acc[(size_t)p * w + k] /= sum[p];
+    free(sum);
+    free(stamp);
+    free(pts);
+    return acc;
+}
+
+static void put_point_data(Buf *b, const Grid *g, const Arr *a, int na, int binary)
+{
+    buf_printf(b, "POINT_DATA %d\n", g->np);
+    Arr *pa = MEM_NEW(Arr, na);
+    for (int i = 0; i < na; i++) {
+        pa[i] = a[i];
+        pa[i].v = point_average(g, &a[i]);
+    }
+    put_arrays(b, pa, na, g->np, binary);
+    for (int i = 0; i < na; i++) free((double *)pa[i].v);
+    free(pa);
+}
+
+/* The whole file into b. */
+static void put_dataset(Buf *b, const Mesh *m, const Grid *g, int polydata, const Arr *a, int na,
+                        const VtkOpts *o)
+{
+    int bin = o->binary;
+    buf_puts(b, "# vtk DataFile Version 2.0\n");
+    put_title(b, o->title);
+    buf_puts(b, bin ? "BINARY\n" : "ASCII\n");
+    buf_puts(b, polydata ? "DATASET POLYDATA\n" : "DATASET UNSTRUCTURED_GRID\n");
+    buf_puts(b, "FIELD FieldData 1\nTimeValue 1 1 double\n");
+    put_doubles(b, &o->time, 1, 1, bin);
+    put_points(b, m, g, bin);
+    put_cells(b, g, polydata ? "POLYGONS" : "CELLS", bin);
+    if (!polydata) put_types(b, g, bin);
+    if (na == 0) return;
+    buf_printf(b, "CELL_DATA %d\n", g->nc);
+    put_arrays(b, a, na, g->nc, bin);
+    if (o->point_data) put_point_data(b, g, a, na, bin);
+}
+
+static int check_fields(const char *path, const Field *f, int n, int count, Err *e)
+{
+    for (int i = 0; i < n; i++) {
+        if (!f[i].name || !f[i].name[0])
+            return err_set(e, path, 0, "field %d has no name", i);
+        if (f[i].width != 1 && f[i].width != 3)
+            return err_set(e, path, 0, "field '%s': width %d, expected 1 or 3", f[i].name, f[i].width);
+        if (count >= 0 && f[i].ncells != count)
+            return err_set(e, path, 0, "field '%s' has %d cells, the mesh %d", f[i].name, f[i].ncells, count);
+    }
+    return 0;
+}
+
+static int write_grid(const char *path, const Mesh *m, const Grid *g, int polydata, const Arr *a,
+                      int na, const VtkOpts *o, Err *e)
+{
+    Buf b;
+    buf_init(&b);
+    put_dataset(&b, m, g, polydata, a, na, o);
+    int rc = io_write_atomic(path, b.p, b.n, 0, e);
+    buf_free(&b);
+    return rc;
+}
+
+static const VtkOpts *opts_or_default(const VtkOpts *o, VtkOpts *def)
+{
+    if (o) return o;
+    vtk_opts_init(def);
+    return def;
+}
+
+int vtk_write_internal(const char *path, const Mesh *m, const Field *fields, int nfields,
+                       const VtkOpts *o, Err *e)
+{
+    VtkOpts def;
+    o = opts_or_default(o, &def);
+    if (check_fields(path, fields, nfields, m->ncells, e)) return -1;
+    if (o->point_data && nfields > 0 && !m->cell_vol)
+        return err_set(e, path, 0, "point data needs the cell volumes (mesh_geometry)");
+    Grid g;
+    memset(&g, 0, sizeof g);
+    int axis = mesh_empty_axis(m);
+    int rc = axis >= 0 ? grid_2d(m, axis, &g, path, e) : grid_3d(m, &g, path, e);
+    if (rc == 0) {
+        Arr *a = MEM_NEW(Arr, nfields);
+        for (int i = 0; i < nfields; i++) a[i] = (Arr){fields[i].name, fields[i].width, fields[i].v};
+        if (o->point_data && nfields > 0) {
+            g.w = MEM_NEW(double, m->ncells);
+            memcpy(g.w, m->cell_vol, (size_t)m->ncells * sizeof(double));
+        }
+        rc = write_grid(path, m, &g, 0, a, nfields, o, e);
+        free(a);
+    }
+    grid_free(&g);
+    return rc;
+}
+
+int vtk_write_patch(const char *path, const Mesh *m, int patch, const Field *fields, int nfields,
+                    const VtkOpts *o, Err *e)
+{
+    VtkOpts def;
+    o = opts_or_default(o, &def);
+    if (patch < 0 || patch >= m->npatches)
+        return err_set(e, path, 0, "patch %d out of range (%d patches)", patch, m->npatches);
+    if (check_fields(path, fields, nfields, -1, e)) return -1;
+    if (o->point_data && nfields > 0 && !m->face_area)
+        return err_set(e, path, 0, "point data needs the face areas (mesh_geometry)");
+    const Patch *pa = &m->patches[patch];
+    int *faces = MEM_NEW(int, pa->size);
+    for (int i = 0; i < pa->size; i++) faces[i] = pa->start + i;
+    Grid g;
+    memset(&g, 0, sizeof g);
+    int rc = grid_polygons(m, faces, pa->size, 0, &g, path, e);
+    if (rc == 0) {
+        Arr *a = MEM_NEW(Arr, nfields);
+        for (int i = 0; i < nfields; i++) {
+            size_t nv = (size_t)pa->size * (size_t)fields[i].width;
+            double *v = MEM_NEW(double, nv);
+            field_patch_values(&fields[i], m, patch, v);
+            a[i] = (Arr){fields[i].name, fields[i].width, v};
+        }
+        if (o->point_data && nfields > 0) {
+            g.w = MEM_NEW(double, pa->size);
+            for (int i = 0; i < pa->size; i++) g.w[i] = geom_norm(m->face_area + 3 * (size_t)faces[i]);
+        }
+        rc = write_grid(path, m, &g, 1, a, nfields, o, e);
+        for (int i = 0; i < nfields; i++) free((double *)a[i].v);
+        free(a);
+    }
+    free(faces);
+    grid_free(&g);
+    return rc;
+}
+
+/* ---- series ---- */
+
+static void put_json_string(Buf *b, const char *s)
+{
+    buf_putc(b, '"');
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        if (*p == '"' || *p == '\\') {
+            buf_putc(b, '\\');
+            buf_putc(b, (char)*p);
+        } else if (*p < 0x20) {
+            buf_printf(b, "\\u%04x", *p);
+        } else {
+            buf_putc(b, (char)*p);
+        }
+    }
+    buf_putc(b, '"');
+}
+
+int vtk_write_series(const char *path, const VtkSeriesEntry *v, int n, Err *e)
+{
+    for (int i = 0; i < n; i++) {
+        if (!v[i].name) return err_set(e, path, 0, "series entry %d has no file name", i);
+        if (!isfinite(v[i].time))
+            return err_set(e, path, 0, "series entry '%s': time is not finite", v[i].name);
+    }
+    Buf b;
+    buf_init(&b);
+    buf_puts(&b, "{\n  \"file-series-version\" : \"1.0\",\n  \"files\" : [\n");
+    for (int i = 0; i < n; i++) {
+        buf_puts(&b, "    { \"name\" : ");
+        put_json_string(&b, v[i].name);
+        buf_puts(&b, ", \"time\" : ");
+        foam_put_double(&b, v[i].time == 0 ? 0.0 : v[i].time, 0);
+        buf_puts(&b, i + 1 < n ? " },\n" : " }\n");
+    }
+    buf_puts(&b, "  ]\n}\n");
+    int rc = io_write_atomic(path, b.p, b.n, 0, e);
+    buf_free(&b);
+    return rc;
+}
