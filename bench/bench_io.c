@@ -20,15 +20,24 @@
 ** do the baseline reads, so both measure CPU work, not the disk; writes
 ** include io_write_atomic's fsync on both sides.
 **
+** Each measurement records wall time and CPU time (user + system of this
+** process).  On a virtual machine whose memory is backed lazily, the first
+** touch of fresh pages can cost more than the work itself, and wall time
+** far above CPU time shows it; so the program first measures that cost
+** alone: "MEM first_touch" is the rate at which 256 MB of fresh memory
+** can be written once, the ceiling for anything that allocates its output.
+**
 ** Output: one line per measurement,
-**     IO <name> <megabytes> <seconds> <MB/s>
-** and  RATIO <name> <binary/copy time>;  bench/run turns them into a table.
+**     IO <name> <megabytes> <wall s> <MB/s> <cpu s>
+**     MEM first_touch <megabytes> <wall s> <MB/s> <cpu s>
+** and  RATIO <name> <binary/copy wall time>;  bench/run makes the table.
 */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <time.h>
 
 #include "buf.h"
@@ -42,6 +51,14 @@ static double now(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static double cpu_now(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec + (double)ru.ru_stime.tv_sec +
+           1e-6 * (double)ru.ru_stime.tv_usec;
 }
 
 static void die(const Err *e)
@@ -93,10 +110,22 @@ static size_t file_size(const char *path)
     return n;
 }
 
-static void report(const char *name, double bytes, double t)
+static void report(const char *name, double bytes, double t, double cpu)
 {
-    printf("IO %s %.1f %.3f %.1f\n", name, bytes / 1e6, t, bytes / 1e6 / t);
+    printf("IO %s %.1f %.3f %.1f %.3f\n", name, bytes / 1e6, t, bytes / 1e6 / t, cpu);
     fflush(stdout);
+}
+
+/* Writing each page of fresh memory once: the machine's allocation ceiling. */
+static void bench_first_touch(void)
+{
+    size_t n = (size_t)256 << 20;
+    double t0 = now(), c0 = cpu_now();
+    volatile char *p = mem_alloc(n);
+    for (size_t i = 0; i < n; i += 4096) p[i] = (char)i;
+    double t = now() - t0, c = cpu_now() - c0;
+    free((void *)p);
+    printf("MEM first_touch %.1f %.3f %.1f %.3f\n", (double)n / 1e6, t, (double)n / 1e6 / t, c);
 }
 
 /* Writes f in one format, reads it back, checks the values, reports both.
@@ -104,20 +133,25 @@ static void report(const char *name, double bytes, double t)
 static size_t bench_format(const Field *f, const Mesh *m, const char *dir, const char *label,
                            int binary, int precision, double *t_write, double *t_read)
 {
+    double c0, c_write, c_read;
     Err e;
     char name[128];
     char *path = io_join(dir, f->name);
     FieldWriteOpts o = {binary, 0, precision, "0"};
     double t0 = now();
+    c0 = cpu_now();
     if (field_write(f, m, path, &o, &e) != 0) die(&e);
     *t_write = now() - t0;
+    c_write = cpu_now() - c0;
     size_t bytes = file_size(path);
 
     Field g;
     memset(&g, 0, sizeof g);
     t0 = now();
+    c0 = cpu_now();
     if (field_read(&g, m, path, &e) != 0) die(&e);
     *t_read = now() - t0;
+    c_read = cpu_now() - c0;
     size_t nv = (size_t)f->ncells * (size_t)f->width;
     double tol = precision > 0 ? 1e-5 : 0.0;
     for (size_t i = 0; i < nv; i++)
@@ -128,9 +162,9 @@ static size_t bench_format(const Field *f, const Mesh *m, const char *dir, const
         }
     field_free(&g);
     snprintf(name, sizeof name, "%s_%s_write", f->name, label);
-    report(name, (double)bytes, *t_write);
+    report(name, (double)bytes, *t_write, c_write);
     snprintf(name, sizeof name, "%s_%s_read", f->name, label);
-    report(name, (double)bytes, *t_read);
+    report(name, (double)bytes, *t_read, c_read);
     io_rm_rf(path, &e);
     free(path);
     return bytes;
@@ -146,21 +180,24 @@ static void bench_copy(const Field *f, const char *dir, size_t bytes, double *t_
     size_t payload = nv * sizeof(double);
     Buf b;
     buf_init(&b);
-    double t0 = now();
+    double t0 = now(), c0 = cpu_now();
     buf_reserve(&b, bytes);
     buf_put(&b, f->v, payload);
     memset(b.p + b.n, ' ', bytes - payload);   /* header-sized padding */
     b.n = bytes;
     if (io_write_atomic(path, b.p, b.n, 0, &e) != 0) die(&e);
     *t_write = now() - t0;
+    double c_write = cpu_now() - c0;
     buf_free(&b);
 
-    double *v = mem_alloc(payload);
     buf_init(&b);
     t0 = now();
+    c0 = cpu_now();
+    double *v = mem_alloc(payload);
     if (io_read_file(path, &b, NULL, &e) != 0) die(&e);
     memcpy(v, b.p, payload);
     *t_read = now() - t0;
+    double c_read = cpu_now() - c0;
     if (memcmp(v, f->v, payload) != 0) {
         fprintf(stderr, "bench_io: raw copy differs\n");
         exit(1);
@@ -168,9 +205,9 @@ static void bench_copy(const Field *f, const char *dir, size_t bytes, double *t_
     buf_free(&b);
     free(v);
     snprintf(name, sizeof name, "%s_copy_write", f->name);
-    report(name, (double)bytes, *t_write);
+    report(name, (double)bytes, *t_write, c_write);
     snprintf(name, sizeof name, "%s_copy_read", f->name);
-    report(name, (double)bytes, *t_read);
+    report(name, (double)bytes, *t_read, c_read);
     io_rm_rf(path, &e);
     free(path);
 }
@@ -209,6 +246,7 @@ int main(int argc, char **argv)
     }
     Err e;
     if (io_mkdir_p(argv[1], &e) != 0) die(&e);
+    bench_first_touch();
     Mesh m;
     shell_mesh(&m, ncells);
     bench_field(&m, argv[1], "T", 1);

@@ -106,6 +106,13 @@ void args_parse(int argc, char **argv, const ToolInfo *t, Args *a)
     }
 }
 
+void args_free(Args *a)
+{
+    free(a->argv);
+    a->argv = NULL;
+    a->argc = 0;
+}
+
 const char *args_get(const Args *a, const ToolInfo *t, const char *name)
 {
     int k = opt_index(t, name);

@@ -56,6 +56,8 @@ typedef struct Args {
 /* Parses argv; handles -help and -version (prints and exits 0); exits 1
    with a usage message on a bad option. */
 void args_parse(int argc, char **argv, const ToolInfo *t, Args *a);
+/* Frees what args_parse allocated. */
+void args_free(Args *a);
 /* Value of tool option name, or NULL. */
 const char *args_get(const Args *a, const ToolInfo *t, const char *name);
 /* Sends the banner and progress to stderr from now on. */

@@ -23,9 +23,11 @@
 ** word, a nested dictionary) makes it give up and the general path parses
 ** the list into nodes, which are then compacted by the same rules, so the
 ** result never depends on which path ran.  Compaction rules: all numbers
-** -> DN_LABELS when every one is an integer in int range, else DN_NUMS
-** width 1; all equal-length numeric tuples -> DN_NUMS of that width;
-** integer lists of different lengths -> DN_RAGGED.
+** -> DN_LABELS when every one is an integer in int range (not "-0"), else
+** DN_NUMS width 1; all equal-length numeric tuples -> DN_NUMS of that
+** width; integer lists of different lengths -> DN_RAGGED, where an inner
+** list counts as integers by value (1e1 as 10), since dict_write prints it
+** so: write(parse(write(d))) == write(d) is what the fuzzer checks.
 **
 ** Binary (FoamFile format binary): "N(" is raw data when the element type
 ** is known: the word List<T> just before it, or for a value without a
@@ -63,10 +65,12 @@ enum {
     MAX_DEPTH = 64,          /* nesting of dictionaries, lists, dimension sets */
     MAX_INCLUDE = 16,        /* nesting of #include */
     MAX_UNIFORM = 1 << 25,   /* numbers created by an N{v} shorthand */
+    MAX_COPIED = 1 << 25,    /* items copied by $variables in one parse */
     KEY_COLUMN = 16          /* dict_write pads keywords to this width */
 };
 
 struct DictRoot {
+    size_t copied;           /* items copied by $variables (bounded) */
     char **files;            /* interned file names */
     size_t nfiles, cfiles;
     char **warn;
@@ -387,6 +391,7 @@ typedef struct Parser {
     ino_t ino;
     int nincl;               /* #include nesting */
     int depth;               /* nesting of values and dictionaries */
+    int depth0;              /* depth at the top level of this file */
     int binary, label_bytes, scalar_bytes;
     char cls[64];            /* FoamFile class */
     int list_w;              /* element type of the next list from List<T>: */
@@ -562,6 +567,10 @@ static DictNode *number_node(Parser *P, const char *s, size_t n, double x, int i
 
 static int fits_int(double x) { return x >= INT_MIN && x <= INT_MAX && x == floor(x); }
 
+/* A number a DN_LABELS list may hold: "-0" is not one, as it would be
+   written back as 0 and the list would not read back the same. */
+static int label_value(double x, int is_int) { return is_int && fits_int(x) && !(x == 0 && signbit(x)); }
+
 /* ---- compaction ---- */
 
 /* Items that make a width-w numeric tuple: a LABELS or NUMS width 1. */
@@ -570,6 +579,17 @@ static int tuple_len(const DictNode *nd)
     if ((nd->kind == DN_LABELS || (nd->kind == DN_NUMS && nd->width == 1)) && nd->n > 0 && nd->n <= INT_MAX)
         return (int)nd->n;
     return -1;
+}
+
+/* A list of integers: LABELS, or NUMS whose values all are labels (1e1
+   is written back as 10, so it must compact the same way as 10). */
+static int int_list(const DictNode *nd)
+{
+    if (nd->kind == DN_LABELS) return 1;
+    if (nd->kind != DN_NUMS || nd->width != 1) return 0;
+    for (size_t i = 0; i < nd->n; i++)
+        if (!label_value(nd->v[i], 1)) return 0;
+    return 1;
 }
 
 /* Replaces items by a compact node when the rules at the top allow;
@@ -581,7 +601,7 @@ static DictNode *compact(Parser *P, NodeVec *it, int line)
     int all_num = 1, all_lab = 1;
     for (size_t i = 0; i < n && all_num; i++) {
         all_num = it->v[i]->kind == DN_NUMBER;
-        if (all_num && !(it->v[i]->is_int && fits_int(it->v[i]->num))) all_lab = 0;
+        if (all_num && !label_value(it->v[i]->num, it->v[i]->is_int)) all_lab = 0;
     }
     DictNode *nd = NULL;
     if (all_num) {
@@ -602,7 +622,7 @@ static DictNode *compact(Parser *P, NodeVec *it, int line)
             int wi = tuple_len(it->v[i]);
             if (wi < 0) return NULL;
             if (wi != w) same = 0;
-            if (it->v[i]->kind != DN_LABELS) all_ilist = 0;
+            if (!int_list(it->v[i])) all_ilist = 0;
         }
         if (w <= 0) return NULL;
         if (same) {
@@ -625,9 +645,10 @@ static DictNode *compact(Parser *P, NodeVec *it, int line)
             nd->iv = MEM_NEW(int, tot);
             size_t k = 0;
             for (size_t i = 0; i < n; i++) {
+                const DictNode *t = it->v[i];
                 nd->off[i] = (int)k;
-                memcpy(nd->iv + k, it->v[i]->iv, it->v[i]->n * sizeof(int));
-                k += it->v[i]->n;
+                for (size_t j = 0; j < t->n; j++) nd->iv[k + j] = t->kind == DN_LABELS ? t->iv[j] : (int)t->v[j];
+                k += t->n;
             }
             nd->off[n] = (int)k;
         } else {
@@ -660,7 +681,7 @@ static void fast_push(Fast *f, double x, int is_int)
 {
     if (f->nv == f->cv) mem_grow((void **)&f->v, &f->cv, f->nv + 1, sizeof *f->v);
     f->v[f->nv++] = x;
-    if (!(is_int && fits_int(x))) f->all_int = 0;
+    if (!label_value(x, is_int)) f->all_int = 0;
 }
 
 static void fast_push_off(Fast *f, size_t k)
@@ -752,7 +773,7 @@ static DictNode *fast_list(Parser *P, long size)
                     p = fast_ws(p, end, &line);
                     if (p >= end) goto give_up;
                     if (*p == ')') break;
-                    if (!(p = fast_num(p, end, &x, &is_int)) || !(is_int && fits_int(x))) goto give_up;
+                    if (!(p = fast_num(p, end, &x, &is_int)) || !label_value(x, is_int)) goto give_up;
                     fast_push(&f, x, is_int);
                 }
                 p++;
@@ -985,7 +1006,9 @@ static int parse_uniform(Parser *P, Dict *d, long size, int line, NodeVec *out)
     P->p++;
     NodeVec one = {NULL, 0, 0};
     if (skip_ws(P)) return -1;
+    const char *v0 = P->p;
     if (P->p < P->end && *P->p != '}' && parse_value(P, d, &one, NULL)) goto fail;
+    size_t span = (size_t)(P->p - v0) + 1;   /* bounds the cost of copies */
     if (skip_ws(P)) goto fail;
     if (P->p >= P->end || *P->p != '}' || one.n != 1) {
         perr(P, line0, "expected one value and '}' in the uniform list %ld{...}", size);
@@ -1000,7 +1023,7 @@ static int parse_uniform(Parser *P, Dict *d, long size, int line, NodeVec *out)
             perr(P, line, "uniform list size %ld is too large", size);
             goto fail;
         }
-        if (v->is_int && fits_int(v->num)) {
+        if (label_value(v->num, v->is_int)) {
             nd = node_new(DN_LABELS, P->file, line);
             nd->iv = MEM_NEW(int, n);
             for (size_t i = 0; i < n; i++) nd->iv[i] = (int)v->num;
@@ -1011,9 +1034,25 @@ static int parse_uniform(Parser *P, Dict *d, long size, int line, NodeVec *out)
             for (size_t i = 0; i < n; i++) nd->v[i] = v->num;
         }
         nd->n = n;
+    } else if (tuple_len(v) > 0) {
+        /* N{(x y z)}: equal tuples, stored as compact() would */
+        size_t w = v->n;
+        if (n > MAX_UNIFORM / w) {
+            perr(P, line, "uniform list size %ld is too large", size);
+            goto fail;
+        }
+        double t[64];
+        double *tv = w <= 64 ? t : MEM_NEW(double, w);
+        for (size_t k = 0; k < w; k++) tv[k] = v->kind == DN_LABELS ? v->iv[k] : v->v[k];
+        nd = node_new(DN_NUMS, P->file, line);
+        nd->width = (int)w;
+        size_t nw = n * w;
+        nd->v = MEM_NEW(double, nw);
+        for (size_t i = 0; i < n; i++) memcpy(nd->v + i * w, tv, w * sizeof(double));
+        if (tv != t) free(tv);
+        nd->n = n;
     } else {
-        size_t w = v->kind == DN_NUMS || v->kind == DN_LABELS ? v->n : 1;
-        if (w == 0 || n > MAX_UNIFORM / w / (v->kind == DN_NUMS || v->kind == DN_LABELS ? 1 : 64)) {
+        if (n > 100000 || n * span > MAX_UNIFORM) {
             perr(P, line, "uniform list size %ld is too large", size);
             goto fail;
         }
@@ -1153,6 +1192,44 @@ static char *lex_var(Parser *P)
     return mem_strndup(s, n);
 }
 
+/* Size (items) and depth of what a variable would copy, so that chains
+   like "b $a $a; c $b $b; ..." cannot grow exponentially. */
+static void cost_dict(const Dict *d, int depth, size_t *cost, int *maxd);
+
+static void cost_node(const DictNode *nd, int depth, size_t *cost, int *maxd)
+{
+    if (depth > *maxd) *maxd = depth;
+    *cost += 1 + nd->n * (size_t)(nd->width > 1 ? nd->width : 1);
+    if (nd->kind == DN_RAGGED) *cost += (size_t)nd->off[nd->n];
+    for (size_t i = 0; nd->items && i < nd->n && *cost < MAX_COPIED; i++) cost_node(nd->items[i], depth + 1, cost, maxd);
+    if (nd->dict) cost_dict(nd->dict, depth + 1, cost, maxd);
+}
+
+static void cost_dict(const Dict *d, int depth, size_t *cost, int *maxd)
+{
+    if (depth > *maxd) *maxd = depth;
+    for (size_t i = 0; i < d->n && *cost < MAX_COPIED; i++) {
+        const DictEntry *en = &d->entries[i];
+        *cost += 1;
+        if (en->dict) cost_dict(en->dict, depth + 1, cost, maxd);
+        for (size_t k = 0; k < en->nvals; k++) cost_node(en->vals[k], depth + 1, cost, maxd);
+    }
+}
+
+static int copy_budget(Parser *P, const Dict *d, const DictEntry *en, const char *name, int line)
+{
+    size_t cost = 0;
+    int maxd = 0, here = 0;
+    for (const Dict *q = d; q; q = q->parent) here++;
+    if (en->dict) cost_dict(en->dict, 0, &cost, &maxd);
+    for (size_t k = 0; k < en->nvals; k++) cost_node(en->vals[k], 0, &cost, &maxd);
+    P->root->copied += cost;
+    if (P->root->copied > MAX_COPIED) return perr(P, line, "variable $%s: expansions copy too much data", name);
+    if (here + P->depth + maxd > 4 * MAX_DEPTH)
+        return perr(P, line, "variable $%s: nesting deeper than %d levels", name, 4 * MAX_DEPTH);
+    return 0;
+}
+
 static int expand_var(Parser *P, Dict *d, NodeVec *out)
 {
     int line = P->line;
@@ -1161,6 +1238,10 @@ static int expand_var(Parser *P, Dict *d, NodeVec *out)
     const DictEntry *en = var_lookup(d, name);
     if (!en) {
         perr(P, line, "undefined variable $%s", name);
+        free(name);
+        return -1;
+    }
+    if (copy_budget(P, d, en, name, line)) {
         free(name);
         return -1;
     }
@@ -1419,6 +1500,28 @@ static int directive(Parser *P, Dict *d)
     return rc;
 }
 
+/* "$p;" at keyword position: merges the entries of dictionary p. */
+static int merge_var(Parser *P, Dict *d, int line)
+{
+    char *name = lex_var(P);
+    if (!name) return -1;
+    const DictEntry *en = var_lookup(d, name);
+    if (!en || !en->dict) {
+        perr(P, line, en ? "variable $%s is not a dictionary and cannot be merged here" : "undefined variable $%s",
+             name);
+        free(name);
+        return -1;
+    }
+    int rc = copy_budget(P, d, en, name, line);
+    free(name);
+    if (rc) return -1;
+    Dict *copy = dict_copy(en->dict, d, "");
+    for (size_t i = 0; i < copy->n; i++) entry_add(d, &copy->entries[i]);
+    copy->n = 0;
+    dict_free_tree(copy);
+    return 0;
+}
+
 /* Parses entries into d until '}' (braced) or the end of the input. */
 static int parse_entries(Parser *P, Dict *d, int braced, int line0)
 {
@@ -1444,20 +1547,7 @@ static int parse_entries(Parser *P, Dict *d, int braced, int line0)
             continue;
         }
         if (c == '$') {
-            char *name = lex_var(P);
-            if (!name) return -1;
-            const DictEntry *en = var_lookup(d, name);
-            if (!en || !en->dict) {
-                perr(P, line, en ? "variable $%s is not a dictionary and cannot be merged here"
-                                 : "undefined variable $%s", name);
-                free(name);
-                return -1;
-            }
-            free(name);
-            Dict *copy = dict_copy(en->dict, d, "");
-            for (size_t i = 0; i < copy->n; i++) entry_add(d, &copy->entries[i]);
-            copy->n = 0;
-            dict_free_tree(copy);
+            if (merge_var(P, d, line)) return -1;
             continue;
         }
         if (c == ')' || c == ']') return perr(P, line, "unmatched '%c'", c);
@@ -1501,7 +1591,7 @@ static int parse_entries(Parser *P, Dict *d, int braced, int line0)
             en.dict = dict_child(d, en.key, P->file, line);
             if (parse_entries(P, en.dict, 1, brace)) goto fail;
             P->depth--;
-            if (strcmp(en.key, "FoamFile") == 0 && d->parent == NULL && P->depth == 0) {
+            if (strcmp(en.key, "FoamFile") == 0 && P->depth == P->depth0) {
                 header_settings(P, en.dict);
                 if (P->up) {   /* an included file's header is not an entry */
                     entry_clear(&en);
@@ -1686,7 +1776,7 @@ static int parse_file(Parser *up, Dict *d, const char *arg, int line, int option
         }
     P.up = up;
     P.nincl = up->nincl + 1;
-    P.depth = up->depth;
+    P.depth = P.depth0 = up->depth;
     int rc = parse_entries(&P, d, 0, 1);
     buf_free(&text);
     if (rc && up->e) {
@@ -2281,7 +2371,7 @@ int dict_check_keys(const Dict *d, const DictKey *keys, Err *e)
     for (size_t i = 0; i < d->n && rc == 0; i++) {
         const DictEntry *en = &d->entries[i];
         if (strcmp(en->key, "FoamFile") == 0) continue;
-        if (!en->key[0]) {
+        if (!en->key[0] && !en->is_regex) {
             rc = err_set(e, en->file, en->line, "value without a keyword in dictionary '%s'", dname(d));
             break;
         }
@@ -2372,7 +2462,7 @@ int dict_remove(Dict *d, const char *key)
 ** Writing
 ** ====================================================================== */
 
-static void write_dict(const Dict *d, Buf *out, int indent);
+static void write_dict(const Dict *d, Buf *out, int indent, int blank);
 static void write_node(const DictNode *nd, Buf *out, int indent);
 
 static void put_indent(Buf *out, int indent)
@@ -2521,7 +2611,7 @@ static void write_node(const DictNode *nd, Buf *out, int indent)
         break;
     case DN_DICT:
         buf_puts(out, "{\n");
-        write_dict(nd->dict, out, indent + 4);
+        write_dict(nd->dict, out, indent + 4, 0);
         put_indent(out, indent);
         buf_putc(out, '}');
         break;
@@ -2549,7 +2639,7 @@ static int is_plain_word(const char *s)
 static void write_entry(const DictEntry *en, Buf *out, int indent, int last)
 {
     put_indent(out, indent);
-    if (!en->key[0] && !en->dict) {   /* a value without keyword */
+    if (!en->key[0] && !en->is_regex && !en->dict) {   /* a value without keyword */
         for (size_t i = 0; i < en->nvals; i++) {
             if (i) buf_putc(out, ' ');
             write_node(en->vals[i], out, indent);
@@ -2568,7 +2658,7 @@ static void write_entry(const DictEntry *en, Buf *out, int indent, int last)
         buf_putc(out, '\n');
         put_indent(out, indent);
         buf_puts(out, "{\n");
-        write_dict(en->dict, out, indent + 4);
+        write_dict(en->dict, out, indent + 4, 0);
         put_indent(out, indent);
         buf_puts(out, "}\n");
         return;
@@ -2584,12 +2674,15 @@ static void write_entry(const DictEntry *en, Buf *out, int indent, int last)
     buf_puts(out, ";\n");
 }
 
-static void write_dict(const Dict *d, Buf *out, int indent)
+/* blank: a blank line between entries, as OpenFOAM writes the top level */
+static void write_dict(const Dict *d, Buf *out, int indent, int blank)
 {
     for (size_t i = 0; i < d->n; i++) {
         write_entry(&d->entries[i], out, indent, i + 1 == d->n);
-        if (indent == 0 && i + 1 < d->n) buf_putc(out, '\n');
+        if (blank && i + 1 < d->n) buf_putc(out, '\n');
     }
 }
 
-void dict_write(const Dict *d, Buf *out) { write_dict(d, out, 0); }
+void dict_write(const Dict *d, Buf *out) { write_dict(d, out, 0, 1); }
+
+void dict_write_body(const Dict *d, Buf *out, int indent) { write_dict(d, out, indent, 0); }

@@ -24,8 +24,16 @@
 ** then raw little-endian bytes then ')'.  The element type comes from a
 ** preceding List<T> word (scalar, vector, label, ...) in the same entry, or
 ** else from the FoamFile class (vectorField, labelList, faceCompactList,
-** scalarField); a binary list of unknown element type is an error.  label
-** and scalar sizes come from the arch string (default label=32;scalar=64).
+** scalarField) for a value without keyword; other lists are ascii even in
+** binary files (inGroups 1(wall)), as OpenFOAM writes them.  label and
+** scalar sizes come from the arch string (default label=32;scalar=64).
+** An empty binary list is "0" without brackets (OpenFOAM's form).
+**
+** Values without a keyword (polyMesh files: "3 ( ... )"; faceCompactList:
+** two lists) form one entry with the empty key "" holding every value up
+** to ';', '}' or the end; dict_find(d, "") returns it.  "N(" and N alone
+** on its line followed by "(" are sized lists; "arc 1 5 (0 1 0)" on one
+** line is the number 5 and a list.  "N ( name { } ... )" counts pairs.
 **
 ** Directives: #include "file" (relative to the including file),
 ** #includeEtc and #includeFunc are read and ignored with a warning kept in
@@ -161,7 +169,8 @@ int dict_node_labels(const DictNode *nd, int **out, size_t *n, Err *e);
 /* Copies a list of integer lists (RAGGED, or a LIST of LABELS/LIST) into
    off[n+1], idx[off[n]]. */
 int dict_node_faces(const DictNode *nd, int **off, int **idx, size_t *n, Err *e);
-/* Human description for messages: "word 'abc'", "list of 3 items", ... */
+/* Name of the node's kind for messages: "word", "list of numbers", ...
+   (the look-up errors add the value: "found word 'abc'"). */
 const char *dict_node_kind_name(const DictNode *nd);
 
 /* ---- keyword checking and help ---- */
@@ -196,6 +205,9 @@ int dict_remove(Dict *d, const char *key);
    columns, 4-space indentation).  Numeric lists are written with
    the shortest representation that reads back bit-exactly. */
 void dict_write(const Dict *d, Buf *out);
+/* Writes the entries of d as the body of a sub-dictionary: every line
+   indented by `indent` spaces, no blank lines between entries. */
+void dict_write_body(const Dict *d, Buf *out, int indent);
 /* Writes one primitive value node (as in "value <node>;"). */
 void dict_write_node(const DictNode *nd, Buf *out);
 

@@ -557,8 +557,11 @@ static int read_owner_neighbour(Mesh *m, const Dict *dow, const char *now, const
     size_t n;
     if (read_labels(dow, now, &m->owner, &n, m->nfaces, 0, INT_MAX - 1, "one per face", e)) return -1;
     if (read_labels(dnb, nnb, &m->neighbour, &n, -1, 0, INT_MAX - 1, "", e)) return -1;
+    DictNode *const *v;
+    size_t nv;
+    body(dnb, nnb, &v, &nv, e);
     if (n > (size_t)m->nfaces)
-        return err_set(e, nnb, 0, "%zu neighbours for %d faces (at most one per face)", n, m->nfaces);
+        return err_set(e, nnb, list_line(v), "%zu neighbours for %d faces (at most one per face)", n, m->nfaces);
     m->ninternal = (int)n;
     int maxc = -1;
     for (int f = 0; f < m->nfaces; f++)
@@ -569,8 +572,8 @@ static int read_owner_neighbour(Mesh *m, const Dict *dow, const char *now, const
        faces; refusing it also bounds every per-cell allocation by the
        input size */
     if ((long)maxc >= (long)m->nfaces + m->ninternal)
-        return err_set(e, now, 0, "cell label %d, but %d faces can bound at most %ld cells", maxc, m->nfaces,
-                       ((long)m->nfaces + m->ninternal) / 4);
+        return err_set(e, now, 0, "cell label %d, but %d faces can bound at most %ld cells (see also %s)", maxc,
+                       m->nfaces, ((long)m->nfaces + m->ninternal) / 4, nnb);
     m->ncells = maxc + 1;
     return 0;
 }

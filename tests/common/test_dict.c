@@ -457,6 +457,11 @@ TEST(includes)
                "%s", dict_nwarnings(d) ? dict_warning(d, 0) : "");
         dict_free(d);
     }
+    put_file(main_path, "a { #include \"common\" }\n");
+    d = dict_read(main_path, &e);
+    EXPECT(d && dict_subdict_opt(d, "a") && dict_subdict_opt(d, "a")->n == 2 && !dict_find(dict_subdict_opt(d, "a"), "FoamFile"),
+           "include inside a sub-dictionary drops the header: %s", d ? "" : e.msg);
+    dict_free(d);
     snprintf(cyc, sizeof cyc, "%s/cyc", dir);
     put_file(cyc, "a 1;\n#include \"cyc\"\n");
     d = dict_read(cyc, &e);
@@ -716,7 +721,10 @@ static const char roundtrip_text[] =
     "grading (4 4 4 4 ((2 4 1) (1 3 0.3)) 1 1 ((2 4 1) (1 3 0.3)) 1 1 1 1);\n"
     "blocks ( hex (0 1 2 3 4 5 6 7) (20 20 1) simpleGrading (1 1 1) );\n"
     "patches ( a { x 1; } b { y (1 2); } );\n"
-    "s 1.50;\nlong 1234567890123456789;\nempty;\nnumbers (1.0 2.0 3.5 4 5 6 7 8 9 10 11 12);\n";
+    "s 1.50;\nlong 1234567890123456789;\nempty;\nnumbers (1.0 2.0 3.5 4 5 6 7 8 9 10 11 12);\n"
+    "\"\" a b;\n\"\";\n"
+    "rag ((0 0 0) (1 0 0) (1 1 0) (1e1 10 9) (12 13 14 15));\n"
+    "negz (1 -0 2);\nnegzf (1 -0 2.5 3 4 5 6 7 8 9 10 11);\nu 2{(0 -0 1)};\n";
 
 TEST(round_trip)
 {
@@ -765,6 +773,13 @@ TEST(build_and_write)
     EXPECT(strcmp(write_text(d), "a               uniform (0 0 0);\n\nnFaces          21;\n\nsub\n{\n"
                                  "    veryLongKeywordName (a b);\n}\n") == 0,
            "'%s'", write_text(d));
+    Buf body;
+    buf_init(&body);
+    dict_write_body(d, &body, 4);
+    EXPECT(strcmp(body.p, "    a               uniform (0 0 0);\n    nFaces          21;\n    sub\n    {\n"
+                          "        veryLongKeywordName (a b);\n    }\n") == 0,
+           "body '%s'", body.p);
+    buf_free(&body);
     EXPECT(dict_remove(d, "a") == 1 && dict_remove(d, "a") == 0 && d->n == 2, "remove");
     Buf b;
     buf_init(&b);
@@ -865,6 +880,19 @@ TEST(every_prefix_and_mutations)
     d = dict_parse(deep, depth, "deep", &e);
     EXPECT(!d && strstr(e.msg, "nesting deeper than 64 levels"), "%s", d ? "parsed" : e.msg);
     free(deep);
+    /* variables that double at every line are stopped, not exponential */
+    Buf x;
+    buf_init(&x);
+    buf_puts(&x, "v0 (1 2 3 4 5 6 7 8 9 10);\n");
+    for (int k = 1; k < 40; k++) buf_printf(&x, "v%d $v%d $v%d;\n", k, k - 1, k - 1);
+    d = dict_parse(x.p, x.n, "grow", &e);
+    EXPECT(!d && strstr(e.msg, "expansions copy too much data"), "%s", d ? "parsed" : e.msg);
+    buf_clear(&x);
+    buf_puts(&x, "a0 { x 1; }\n");
+    for (int k = 1; k < 300; k++) buf_printf(&x, "a%d { b $a%d; }\n", k, k - 1);
+    d = dict_parse(x.p, x.n, "nest", &e);
+    EXPECT(!d && strstr(e.msg, "nesting deeper than 256 levels"), "%s", d ? "parsed" : e.msg);
+    buf_free(&x);
 }
 
 /* ---- speed ---- */

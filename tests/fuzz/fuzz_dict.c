@@ -66,7 +66,7 @@ static void fuzz_setup(void)
 
 static int names_system_file(const uint8_t *d, size_t n)
 {
-    static const char *const bad[] = {"/dev", "/proc", "/sys"};
+    static const char *const bad[] = {"/dev/", "/proc/", "/sys/"};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         size_t m = strlen(bad[k]);
         for (size_t i = 0; i + m <= n; i++)

@@ -17,8 +17,10 @@
 #     is reported in the PASS line);
 #   - the per-cell line: one sample per cell of the column (40), at the
 #     cell's mid-height, lengths adding up to 1 (to 1e-12).
-# Then a second Allrun must change nothing, and Allclean must restore the
-# case as it came.
+# VTK's own reader must read the VTK file with the same grain volume.
+# When OpenFOAM is installed, its checkMesh must say "Mesh OK." and its
+# foamToVTK must read both fields (else SKIP).  Then a second Allrun must
+# change nothing, and Allclean must restore the case as it came.
 set -u
 top=${KIESEL_TOP:-$(cd "$(dirname "$0")/../.." && pwd)}
 export KIESEL_DIR=$top
@@ -261,6 +263,28 @@ elif [ "$before" != "$after" ]; then
     fail quickStart_rerun "files changed: $(diff <(echo "$before") <(echo "$after") | head -n 4 | tr '\n' ' ')"
 else
     pass quickStart_rerun
+fi
+
+# OpenFOAM reads the case: checkMesh passes the grid, foamToVTK reads both
+# fields (Debian's OpenFOAM v1912; SKIP without it).
+if [ -z "${WM_PROJECT_DIR:-}" ] && [ -d /usr/share/openfoam ]; then
+    export WM_PROJECT_DIR=/usr/share/openfoam
+fi
+if command -v checkMesh > /dev/null 2>&1 && command -v foamToVTK > /dev/null 2>&1; then
+    cm=$(checkMesh -case "$case" 2>&1)
+    fv=$(foamToVTK -case "$case" -legacy -name openfoamVTK 2>&1); fvrc=$?
+    rm -rf "$case/openfoamVTK"
+    if ! grep -q '^Mesh OK\.' <<<"$cm"; then
+        fail quickStart_openfoam "checkMesh: $(grep -E 'Failed|FATAL|\*\*\*' <<<"$cm" | head -n 3 | tr '\n' ' ')"
+    elif ! grep -Eq 'cells: +1600$' <<<"$cm"; then
+        fail quickStart_openfoam "checkMesh counts $(grep -E 'cells:' <<<"$cm" | head -n 1)"
+    elif [ "$fvrc" -ne 0 ] || ! grep -q 'alpha\.s' <<<"$fv" || ! grep -Eq '(^|[ (])U([ )]|$)' <<<"$fv"; then
+        fail quickStart_openfoam "foamToVTK (status $fvrc) did not read alpha.s and U: $(tail -n 3 <<<"$fv" | tr '\n' ' ')"
+    else
+        pass quickStart_openfoam
+    fi
+else
+    echo "SKIP quickStart_openfoam: OpenFOAM's checkMesh/foamToVTK not installed"
 fi
 
 # Allclean restores the pristine case.

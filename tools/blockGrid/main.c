@@ -130,6 +130,6 @@ int main(int argc, char **argv)
     dict_free(d);
     free(dir);
     free(dict_path);
-    free(a.argv);
+    args_free(&a);
     return 0;
 }

@@ -59,6 +59,6 @@ int main(int argc, char **argv)
     log_end(&a);
     mesh_free(&m);
     free(dir);
-    free(a.argv);
+    args_free(&a);
     return 0;
 }

@@ -28,7 +28,7 @@ static const ArgOpt opts[] = {
     {"-keywords", NULL, "list the keywords of the selected dictionary"},
     {0}};
 
-static const ToolInfo tool = {"dictQuery", "print a dictionary, an entry, its value or its keywords", opts, NULL,
+static const ToolInfo tool = {"dictQuery", "dictQuery [options] FILE: print a dictionary FILE (or -dict FILE, - for stdin), an entry, its value or its keywords", opts, NULL,
                               0};
 
 /* The entry named by a scoped name with '.' or '/' separators. */
@@ -42,19 +42,6 @@ static const DictEntry *select_entry(const Dict *d, const char *name)
     en = dict_find_scoped(d, dots);
     free(dots);
     return en;
-}
-
-/* dict_write output of d, every line indented by four spaces. */
-static void put_indented(const Dict *d, Buf *out)
-{
-    Buf t;
-    buf_init(&t);
-    dict_write(d, &t);
-    for (size_t i = 0; i < t.n; i++) {
-        if ((i == 0 || t.p[i - 1] == '\n') && t.p[i] != '\n') buf_puts(out, "    ");
-        buf_putc(out, t.p[i]);
-    }
-    buf_free(&t);
 }
 
 /* The value nodes of a primitive entry on one line (a long list keeps
@@ -79,7 +66,7 @@ static void print_entry(const DictEntry *en, int value_only, Buf *out)
     if (en->dict) {
         if (!value_only) buf_printf(out, "%s\n", en->key);
         buf_puts(out, "{\n");
-        put_indented(en->dict, out);
+        dict_write_body(en->dict, out, 4);
         buf_puts(out, "}\n");
         return;
     }
@@ -92,16 +79,16 @@ int main(int argc, char **argv)
 {
     Args a;
     args_parse(argc, argv, &tool, &a);
-    if (a.argc != 1) err_fatal("expected one dictionary file (try -help)");
+    if (a.argc + (a.dict != NULL) != 1) err_fatal("expected one dictionary file (try -help)");
+    const char *file = a.argc ? a.argv[0] : a.dict;
     const char *entry = args_get(&a, &tool, "-entry");
     int value = args_get(&a, &tool, "-value") != NULL;
     int keywords = args_get(&a, &tool, "-keywords") != NULL;
     if (value && keywords) err_fatal("-value and -keywords exclude each other");
     if (value && !entry) err_fatal("-value needs -entry");
 
-    char *path = strcmp(a.case_dir, ".") && a.argv[0][0] != '/' && strcmp(a.argv[0], "-")
-                     ? args_case_path(&a, a.argv[0])
-                     : mem_strdup(a.argv[0]);
+    char *path = strcmp(a.case_dir, ".") && file[0] != '/' && strcmp(file, "-") ? args_case_path(&a, file)
+                                                                               : mem_strdup(file);
     Err e;
     Dict *d = dict_read(path, &e);
     if (!d) err_die(&e);
@@ -129,7 +116,7 @@ int main(int argc, char **argv)
         int bare = 0;
         for (size_t i = 0; i < sel->n; i++) {
             const DictEntry *k = &sel->entries[i];
-            if (!k->key[0]) buf_printf(&out, "entry%d\n", bare++);
+            if (!k->key[0] && !k->is_regex) buf_printf(&out, "entry%d\n", bare++);
             else buf_printf(&out, k->is_regex ? "\"%s\"\n" : "%s\n", k->key);
         }
     } else if (en) {

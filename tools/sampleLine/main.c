@@ -89,8 +89,8 @@ static int parse_line(const Dict *d, const char *name, Line *l, Err *e)
         dict_choice_or(d, "mode", modes, SAMPLE_UNIFORM, &l->mode, e) ||
         dict_label_or(d, "nPoints", 100, &l->npoints, e))
         return -1;
-    if (l->mode == SAMPLE_UNIFORM && (l->npoints < 1 || l->npoints > 100000000))
-        return err_set(e, d->file, d->line, "line '%s': nPoints must be between 1 and 1e8, found %d", name,
+    if (l->mode == SAMPLE_UNIFORM && (l->npoints < 1 || l->npoints > 10000000))
+        return err_set(e, d->file, d->line, "line '%s': nPoints must be between 1 and 10000000, found %d", name,
                        l->npoints);
     if (l->mode == SAMPLE_CELLS && !(l->a[0] != l->b[0] || l->a[1] != l->b[1] || l->a[2] != l->b[2]))
         return err_set(e, d->file, d->line, "line '%s': start and end must differ in cells mode", name);
@@ -349,6 +349,6 @@ int main(int argc, char **argv)
     dict_free(d);
     free(mpath);
     free(dpath);
-    free(a.argv);
+    args_free(&a);
     return 0;
 }

@@ -524,6 +524,6 @@ int main(int argc, char **argv)
     free(mpath);
     free(cpath);
     free(dpath);
-    free(a.argv);
+    args_free(&a);
     return 0;
 }

@@ -364,6 +364,6 @@ int main(int argc, char **argv)
     free(cname);
     free(vdir);
     mesh_free(&m);
-    free(a.argv);
+    args_free(&a);
     return 0;
 }

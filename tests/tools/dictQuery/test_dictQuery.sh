@@ -74,6 +74,11 @@ check relative_path "0.005" "$out"
 out=$("$DQ" -case case -entry deltaT -value system/controlDict 2>&1)
 check case_option "0.005" "$out"
 
+out=$("$DQ" -dict case/system/controlDict -entry deltaT -value 2>&1)
+check dict_option "0.005" "$out"
+out=$(printf 'x { y (1 2 3); }\n' | "$DQ" -entry x.y -value - 2>&1)
+check stdin "(1 2 3)" "$out"
+
 # The whole file: written as parsed, and it reads back to the same text.
 "$DQ" case/system/controlDict >whole.txt 2>err.txt
 rc=$?
@@ -123,6 +128,7 @@ printf 'a 1;\n#calc "1+1"\n' >bad4.dict
 expect_error error_unsupported_directive "bad4.dict:2: directive #calc is not supported" bad4.dict
 expect_error error_missing_entry "entry 'nope' not found" -entry nope case/system/controlDict
 expect_error error_missing_file "nosuchfile" nosuchfile
+expect_error error_no_file "expected one dictionary file"
 expect_error error_keywords_of_value "is not a dictionary" -entry deltaT -keywords case/system/controlDict
 head -c 40 /dev/urandom >random.bin
 printf '\x00\x01' >>random.bin

@@ -224,7 +224,7 @@ fi
 # Sourced from an unrelated directory through a relative path with "..".
 newcase bashrc
 rel=$(python3 -c 'import os,sys; print(os.path.relpath(sys.argv[1]))' "$top/etc/bashrc" 2>/dev/null || echo "$top/etc/bashrc")
-out=$(cd "$scratch/bashrc" && env -u KIESEL_BIN -u KIESEL_DIR bash -c ". '$rel'; . '$rel'; echo \"\$KIESEL_DIR\"; echo \"\$PATH\"")
+out=$(cd "$scratch/bashrc" && env -u KIESEL_BIN -u KIESEL_DIR PATH=/usr/bin:/bin bash -c ". '$rel'; . '$rel'; echo \"\$KIESEL_DIR\"; echo \"\$PATH\"")
 dir=$(sed -n 1p <<<"$out"); path=$(sed -n 2p <<<"$out")
 real_top=$(cd "$top" && pwd -P)
 count=$(tr ':' '\n' <<<"$path" | grep -cx "$real_top/bin")

@@ -235,6 +235,9 @@ lines { a { end (1 1 0); } }'
 bad sampleLine_bad_mode "bad.dict:2: .*mode.*(uniform|cells)" \
 'fields (T);
 lines { a { start (0 0 0); end (1 1 0); mode cell; } }'
+bad sampleLine_bad_npoints "bad.dict:2: line 'a': nPoints must be between 1 and 10000000, found 0" \
+'fields (T);
+lines { a { start (0 0 0); end (1 1 0); nPoints 0; } }'
 bad sampleLine_bad_line_option "no line 'inne' in the dictionary; did you mean 'inner'\?" \
 'fields (T); lines { inner { start (0 0 0); end (1 1 0); } }' "-line inne"
 

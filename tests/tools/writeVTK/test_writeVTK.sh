@@ -11,6 +11,7 @@ TOP=${KIESEL_TOP:-/work/main}
 HERE=$TOP/tests/tools/writeVTK
 TOOL=$BIN/writeVTK
 PY=/usr/bin/python3
+export PYTHONDONTWRITEBYTECODE=1   # the case writer is imported from the source tree
 
 pass() { echo "PASS $1"; }
 fail() { echo "FAIL $1: $2"; }
