@@ -204,26 +204,61 @@ const char *dict_warning(const Dict *d, size_t i) { return i < d->root->nwarn ? 
 
 /* Compiles a regex key as "^(key)$" for whole-key matching; the bare key
    is compiled first so "a)(b" is rejected rather than accepted anchored. */
+/* glibc's regcomp expands repetitions by copying the repeated part
+   ("a+" is "aa*", "a{3}" is "aaa"), so nested or stacked repetitions
+   ("((a+)+)+", "a++++", "a{99}{99}") grow exponentially.  This estimates
+   the expanded size and refuses patterns a dictionary key never needs. */
 static int regex_too_complex(const char *s, char *why, size_t nwhy)
 {
-    double cost = 1;
+    enum { MAXLEN = 512, LIMIT = 20000 };
     size_t len = strlen(s);
-    if (len > 512) return snprintf(why, nwhy, "longer than 512 characters"), 1;
+    if (len > MAXLEN) return snprintf(why, nwhy, "longer than %d characters", MAXLEN), 1;
+    double sum[MAXLEN + 2], last = 0;
+    int top = 0;
+    sum[0] = 0;
     for (size_t i = 0; i < len; i++) {
-        if (s[i] == '\\' && i + 1 < len && is_digit_c(s[i + 1]))
+        char c = s[i];
+        double k = 1;
+        if (c == '\\' && i + 1 < len && is_digit_c(s[i + 1]))
             return snprintf(why, nwhy, "back-references are not supported"), 1;
-        if (s[i] == '{') {
-            long m = 0;
-            for (size_t j = i + 1; j < len && s[j] != '}'; j++)
-                if (is_digit_c(s[j])) {
-                    long v = strtol(s + j, NULL, 10);
-                    if (v > m) m = v > 100000 ? 100000 : v;
-                    while (j + 1 < len && is_digit_c(s[j + 1])) j++;
-                }
-            cost *= (double)(m + 1);
+        if (c == '(') {
+            sum[++top] = 0;
+            continue;
         }
+        if (c == ')' && top > 0) {
+            last = sum[top--];
+            sum[top] += last;
+        } else if (c == '+') {
+            k = 2;
+        } else if (c == '{') {
+            double m = 0;
+            for (i++; i < len && s[i] != '}'; i++)
+                if (is_digit_c(s[i])) {
+                    double v = 0;
+                    for (; i < len && is_digit_c(s[i]); i++) v = v * 10 + (s[i] - '0');
+                    if (v > m) m = v;
+                    i--;
+                }
+            k = m + 1;
+        } else if (c != '*' && c != '?' && c != '|') {
+            if (c == '[') {   /* a bracket expression is one atom */
+                size_t j = i + 1;
+                if (j < len && s[j] == '^') j++;
+                if (j < len && s[j] == ']') j++;
+                while (j < len && s[j] != ']') j++;
+                i = j;
+            } else if (c == '\\') {
+                i++;
+            }
+            last = 1;
+            sum[top] += 1;
+        }
+        if (k > 1) {
+            sum[top] += last * (k - 1);
+            last *= k;
+        }
+        if (sum[top] > LIMIT || last > LIMIT) return snprintf(why, nwhy, "repetitions too deeply nested"), 1;
     }
-    if (cost > 1000) return snprintf(why, nwhy, "repetition counts too large"), 1;
     return 0;
 }
 
@@ -2550,6 +2585,19 @@ static int is_listy(const DictNode *nd)
 
 static void write_list(const DictNode *nd, Buf *out, int indent, int sized);
 
+/* A word with a '(' it does not close ("h(a"): a ')' right after it would
+   be read as part of it. */
+static int word_open(const DictNode *nd)
+{
+    if (nd->kind != DN_WORD || !nd->text) return 0;
+    int depth = 0;
+    for (const char *c = nd->text; *c; c++) {
+        if (*c == '(') depth++;
+        if (*c == ')' && depth > 0) depth--;
+    }
+    return depth > 0;
+}
+
 /* Writes nd on a new line after prev: a one-line list after an integer
    gets its size ("4\n2((1 2) (3 4))"), else "4\n((1 2) (3 4))" would
    read back as a sized list "4(...)" of the wrong length. */
@@ -2573,6 +2621,8 @@ static void write_list(const DictNode *nd, Buf *out, int indent, int sized)
             if (i) buf_putc(out, ' ');
             write_item(nd, i, out, indent);
         }
+        /* "h(a" then ')' would read back as the one word "h(a)" */
+        if (nd->kind == DN_LIST && word_open(nd->items[nd->n - 1])) buf_putc(out, ' ');
         buf_putc(out, ')');
         return;
     }

@@ -463,6 +463,11 @@ static int read_patch(PatchField *pf, const Patch *patch, const DictEntry *en, i
     const Dict *pd = en->dict;
     const char *type;
     if (dict_word(pd, "type", &type, e)) return -1;
+    const DictEntry *tw = dict_find(pd, "type");
+    const DictNode *tn = dict_entry_value(tw, NULL);
+    if (!tn || tn->kind != DN_WORD) /* a quoted or numeric type could not be written back */
+        return err_set(e, tw->file, tw->line, "patch '%s': type must be a word, found %s", patch->name,
+                       tn ? dict_node_kind_name(tn) : "several values");
     /* OpenFOAM refuses a basic type on a constraint patch; unknown types
        may derive from the constraint (fan on cyclic) and are let through */
     if (type_constraint(patch->type) && strcmp(type, patch->type) != 0 &&

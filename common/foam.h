@@ -42,9 +42,11 @@ void foam_put_faces(Buf *b, const int *off, const int *idx, size_t n, int binary
 
 /* Parses a decimal number at s (no leading space); returns the number of
    characters consumed (0 if none) and sets *x and *is_int.  Accepts the
-   forms strtod accepts for finite numbers plus nan/inf words are NOT
-   numbers (they are words).  Fast path exact for <= 19 digit mantissas
-   with small exponents; falls back to strtod otherwise. */
+   decimal forms strtod accepts ([+-]digits[.digits][e[+-]digits], ".5",
+   "5."); nan/inf and hex floats are NOT numbers (they are words).  *x is
+   bit-for-bit what strtod gives (inf on overflow): a fast path, exact for
+   mantissas <= 2^53 and |exponent| <= 22, and strtod otherwise.  is_int:
+   written without '.' or exponent.  s need not be NUL-terminated. */
 size_t foam_parse_number(const char *s, const char *end, double *x, int *is_int);
 
 #endif

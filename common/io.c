@@ -152,6 +152,7 @@ int io_read_file(const char *path, Buf *out, char **found_path, Err *e)
         int rc = io_gunzip(name, raw.p, raw.n, out, e);
         buf_free(&raw);
         if (rc) {
+            buf_free(out); /* a failed read leaves nothing for the caller to free */
             free(gz);
             return -1;
         }

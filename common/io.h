@@ -20,7 +20,8 @@
 
 /* Reads all of path (or stdin for "-") into out (cleared first).  On
    success, if found_path is not NULL, it receives the name actually read
-   (path or path.gz; caller frees).  Returns 0 or -1. */
+   (path or path.gz; caller frees).  Returns 0 or -1; on failure out is
+   left empty and freed, so the caller need not free it. */
 int io_read_file(const char *path, Buf *out, char **found_path, Err *e);
 
 /* Reads all of a FILE* (already open) into out. */

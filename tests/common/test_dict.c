@@ -345,6 +345,11 @@ TEST(regex_keys)
            parse_error("a 1;\n\"(bad\" 2;\n"));
     EXPECT(strstr(parse_error("\"a{1000}{1000}\" 2;\n"), "test.dict:1: invalid regular expression"), "%s",
            parse_error("\"a{1000}{1000}\" 2;\n"));
+    EXPECT(strstr(parse_error("\"h+++++++++++++++++++++++++++++++++++++a\" 2;\n"), "repetitions too deeply nested"),
+           "%s", parse_error("\"h+++++++++++++++++++++++++++++++++++++a\" 2;\n"));
+    EXPECT(strstr(parse_error("\"((((((((((((((((((((a+)+)+)+)+)+)+)+)+)+)+)+)+)+)+)+)+)+)+)+)+\" 2;\n"),
+                  "repetitions too deeply nested"),
+           "nested repetitions");
     dict_free(d);
 }
 
@@ -723,6 +728,7 @@ static const char roundtrip_text[] =
     "patches ( a { x 1; } b { y (1 2); } );\n"
     "s 1.50;\nlong 1234567890123456789;\nempty;\nnumbers (1.0 2.0 3.5 4 5 6 7 8 9 10 11 12);\n"
     "\"\" a b;\n\"\";\n"
+    "ow (x h(scalar= );\n"
     "rag ((0 0 0) (1 0 0) (1 1 0) (1e1 10 9) (12 13 14 15));\n"
     "negz (1 -0 2);\nnegzf (1 -0 2.5 3 4 5 6 7 8 9 10 11);\nu 2{(0 -0 1)};\n";
 

@@ -123,6 +123,10 @@ TEST(parse_is_int_and_bounds)
     EXPECT(foam_parse_number("abc", (const char *)"abc" + 3, &x, &is_int) == 0, "abc is no number");
     EXPECT(foam_parse_number("nan", (const char *)"nan" + 3, &x, &is_int) == 0, "nan is a word");
     EXPECT(foam_parse_number("inf", (const char *)"inf" + 3, &x, &is_int) == 0, "inf is a word");
+    n = foam_parse_number("0x10", (const char *)"0x10" + 4, &x, &is_int);
+    EXPECT(n == 1 && x == 0, "no hex floats: n %zu x %g", n, x);
+    n = foam_parse_number(" 1", (const char *)" 1" + 2, &x, &is_int);
+    EXPECT(n == 0, "no leading blanks");
 }
 
 /* Significant digits of a %g-style string (sign, point, exponent,

@@ -15,7 +15,8 @@
 **
 ** #include "inc" resolves relative to the input's name, which lives in a
 ** per-process scratch directory holding one small include file, so the
-** include path is exercised without touching anything else.  Inputs that
+** include path is exercised without touching anything else (the directory
+** is under $FUZZ_SCRATCH when set, which tests/fuzz/run removes).  Inputs that
 ** name device or kernel files (/dev, /proc, /sys) are skipped: reading
 ** /dev/zero forever is not a parser bug.
 **
@@ -34,11 +35,13 @@ enum { MAX_DEPTH = 16 };
 
 static char *scratch_name;   /* "<scratch>/fuzz.dict": the input's name */
 
-/* A scratch directory on tmpfs when there is one (fast, no disk). */
+/* A scratch directory under $FUZZ_SCRATCH (tests/fuzz/run sets it and
+   removes it afterwards), else on tmpfs when there is one (fast, no disk). */
 static char *fuzz_scratch_dir(const char *tag)
 {
-    static const char *const roots[] = {"/dev/shm", "/tmp"};
-    for (size_t k = 0; k < 2; k++) {
+    const char *roots[] = {getenv("FUZZ_SCRATCH"), "/dev/shm", "/tmp"};
+    for (size_t k = 0; k < 3; k++) {
+        if (!roots[k]) continue;
         size_t n = strlen(roots[k]) + strlen(tag) + 16;
         char *dir = malloc(n);
         snprintf(dir, n, "%s/%s.XXXXXX", roots[k], tag);

@@ -11,8 +11,9 @@
 ** reader, and mesh_check at start-up proves the construction.
 **
 ** Each input is written (plain stdio: this is the harness, not the
-** library) to "0/T" in a per-process scratch directory, on tmpfs when
-** there is one, and read with field_read.  A field that reads must give
+** library) to "0/T" in a per-process scratch directory (under
+** $FUZZ_SCRATCH, which tests/fuzz/run sets and removes, else on tmpfs when
+** there is one) and read with field_read.  A field that reads must give
 ** finite values (the reader refuses NaN/Inf), answer field_patch_values
 ** on every patch, and survive a write/read round trip through field_write
 ** (binary, and ascii at full precision) with equal internal and patch
@@ -154,9 +155,10 @@ static char *scratch_file(const char *dir, const char *sub)
 
 static void fuzz_setup(void)
 {
-    static const char *const roots[] = {"/dev/shm", "/tmp"};
-    char dir[64] = "";
-    for (size_t k = 0; k < 2 && !dir[0]; k++) {
+    const char *roots[] = {getenv("FUZZ_SCRATCH"), "/dev/shm", "/tmp"};
+    char dir[512] = "";
+    for (size_t k = 0; k < 3 && !dir[0]; k++) {
+        if (!roots[k]) continue;
         snprintf(dir, sizeof dir, "%s/kiesel-fuzz-field.XXXXXX", roots[k]);
         if (!mkdtemp(dir)) dir[0] = '\0';
     }
