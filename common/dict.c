@@ -802,7 +802,7 @@ static DictNode *fast_list(Parser *P, long size)
                 if (mode == UNSET) mode = SIZED;
                 if (mode != SIZED || !is_int || x < 0 || x > INT_MAX) goto give_up;
                 fast_push_off(&f, f.nv);
-                size_t k0 = f.nv;
+                size_t k0 = f.nv, want = (size_t)x;
                 p = q + 1;
                 for (;;) {
                     p = fast_ws(p, end, &line);
@@ -812,7 +812,7 @@ static DictNode *fast_list(Parser *P, long size)
                     fast_push(&f, x, is_int);
                 }
                 p++;
-                if (f.nv - k0 != (size_t)x || f.nv > INT_MAX) goto give_up;
+                if (f.nv - k0 != want || f.nv > INT_MAX) goto give_up;
             } else {
                 if (mode == UNSET) mode = SCALARS;
                 if (mode != SCALARS) goto give_up;

@@ -533,6 +533,7 @@ TEST(parse_errors_exact)
         {"a 1;\nb \"abc;\n\n", "test.dict:2: unterminated string"},
         {"a 1;\n/* open\n\ncomment", "test.dict:2: unterminated comment"},
         {"a 1;\n\nb 5(1 2 3 4);\n", "test.dict:3: list size 5 does not match the 4 items read"},
+        {"a (\n2(5 -1)\n3(5 -1));\n", "test.dict:3: list size 3 does not match the 2 items read"},
         {"a 1;\nb\n{\n  c 1;\n", "test.dict:3: unterminated dictionary started at line 3"},
         {"a 1;\n[ b;\n", "test.dict:2: expected a keyword, found '['"},
         {"dims [0 1 -1 0\n0 0 0", "test.dict:1: unterminated dimension set started at line 1"},
