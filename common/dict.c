@@ -1952,11 +1952,28 @@ static void describe(const DictNode *nd, char *s, size_t n)
     }
 }
 
+static int is_listlike(const DictNode *nd)
+{
+    return nd->kind == DN_LIST || nd->kind == DN_NUMS || nd->kind == DN_LABELS || nd->kind == DN_RAGGED;
+}
+
 const DictNode *dict_entry_value(const DictEntry *en, Err *e)
 {
     if (en->dict) {
         err_set(e, en->file, en->line, "keyword '%s': expected a value, found a sub-dictionary", en->key);
         return NULL;
+    }
+    /* "x 41 (...)": the parser keeps a size separated from its list by a
+       space as a value of its own (in "arc 1 5 (x y z)" it is one); where a
+       single value is expected it can only be the list's size */
+    if (en->nvals == 2 && en->vals[0]->kind == DN_NUMBER && en->vals[0]->is_int && en->vals[0]->num >= 0 &&
+        is_listlike(en->vals[1])) {
+        if (en->vals[0]->num != (double)dict_node_len(en->vals[1])) {
+            err_set(e, en->file, en->vals[0]->line, "keyword '%s': list size %.0f does not match the %zu items read",
+                    en->key, en->vals[0]->num, dict_node_len(en->vals[1]));
+            return NULL;
+        }
+        return en->vals[1];
     }
     if (en->nvals != 1) {
         err_set(e, en->file, en->line, "keyword '%s': expected a single value, found %zu values", en->key,

@@ -156,7 +156,9 @@ int dict_choice_or(const Dict *d, const char *key, const char *const *choices, i
 
 /* ---- nodes ---- */
 
-/* The single value node of a primitive entry (error if none or several). */
+/* The single value node of a primitive entry (error if none or several).
+   A size followed by a list ("x 41 (...)") counts as that list, and the
+   size must match. */
 const DictNode *dict_entry_value(const DictEntry *en, Err *e);
 /* Number of items of any list-like node (LIST, NUMS, LABELS, RAGGED). */
 size_t dict_node_len(const DictNode *nd);

@@ -317,9 +317,18 @@ static int read_values(const DictEntry *en, int width, int count, const ValueCtx
                            en->vals[k]->text);
         k++;
     }
+    /* "200 (" with the size and the list on one line: the parser keeps
+       the size as a number of its own (in "arc 1 5 (x y z)" it is one), so
+       the size is checked here, where a list is known to follow */
+    const DictNode *size_nd = NULL;
+    if (k + 2 == en->nvals && en->vals[k]->kind == DN_NUMBER && en->vals[k]->is_int)
+        size_nd = en->vals[k++];
     if (k + 1 != en->nvals)
         return err_set(e, file, en->line, "%s: expected one list after 'nonuniform'", c->what);
     const DictNode *nd = en->vals[k];
+    if (size_nd && size_nd->num != (double)dict_node_len(nd))
+        return err_set(e, file, size_nd->line, "%s: list size %.0f does not match the %zu items read", c->what,
+                       size_nd->num, dict_node_len(nd));
     size_t n;
     if (nd->kind == DN_NUMBER && nd->is_int && nd->num == 0) {
         n = 0; /* a zero-size binary list is written as its size alone */

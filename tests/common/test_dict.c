@@ -264,6 +264,24 @@ TEST(general_path_equals_fast_path)
     dict_free(b);
 }
 
+TEST(size_then_list_on_one_line)
+{
+    Err e;
+    Dict *d = parse("x 3 (0 0.5 1);\nbad 4 (1 2 3);\narc 1 5 (1.1 0 0.5);\n", &e);
+    EXPECT(d, "%s", e.msg);
+    if (!d) return;
+    const DictNode *nd = dict_entry_value(dict_find(d, "x"), &e);
+    EXPECT(nd && dict_node_len(nd) == 3, "size and list on one line not taken as one list: %s", e.msg);
+    nd = dict_entry_value(dict_find(d, "bad"), &e);
+    EXPECT(!nd, "wrong size accepted");
+    CONTAINS(e.msg, "test.dict:2: keyword 'bad': list size 4 does not match the 3 items read");
+    /* several values where one is expected: still an error */
+    nd = dict_entry_value(dict_find(d, "arc"), &e);
+    EXPECT(!nd, "arc accepted as a single value");
+    CONTAINS(e.msg, "expected a single value, found 3 values");
+    dict_free(d);
+}
+
 TEST(dimensions_and_uniform)
 {
     Err e;
@@ -943,6 +961,7 @@ int main(void)
     RUN(typed_lookup_errors);
     RUN(lists_and_compaction);
     RUN(general_path_equals_fast_path);
+    RUN(size_then_list_on_one_line);
     RUN(dimensions_and_uniform);
     RUN(boundary_list_of_dicts);
     RUN(regex_keys);

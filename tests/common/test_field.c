@@ -431,6 +431,18 @@ TEST(count_and_class_errors)
            cls ? cls : "(null)");
     free(cls);
     free(path);
+    /* size and list on one line, with a space: accepted when they agree */
+    path = write_case_file("dimensions [0 0 0 1 0 0 0];\n\ninternalField nonuniform List<scalar> 4 (1 2 3 4);\n"
+                           "boundaryField { \".*\" { type zeroGradient; } }\n");
+    EXPECT(field_read(&f, &m, path, &e) == 0, "size before the list on one line refused: %s", e.msg);
+    if (f.v) NEAR(f.v[3], 4.0, 0.0);
+    field_free(&f);
+    free(path);
+    path = write_case_file("dimensions [0 0 0 1 0 0 0];\n\ninternalField nonuniform List<scalar> 5 (1 2 3 4);\n"
+                           "boundaryField { \".*\" { type zeroGradient; } }\n");
+    snprintf(want, sizeof want, "%s:10: internalField: list size 5 does not match the 4 items read", path);
+    EXPECT(field_read(&f, &m, path, &e) == -1 && strcmp(e.msg, want) == 0, "got '%s', expected '%s'", e.msg, want);
+    free(path);
     path = write_case_file("dimensions [0 0 0 1 0 0 0];\ninternalField uniform (1 2 3);\nboundaryField {}\n");
     EXPECT(field_read(&f, &m, path, &e) == -1, "vector accepted for a scalar field");
     CONTAINS(e.msg, "uniform value must be a number");
