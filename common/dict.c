@@ -1779,11 +1779,7 @@ static int parse_file(Parser *up, Dict *d, const char *arg, int line, int option
         snprintf(path, m, "%.*s/%s", (int)(slash - up->file), up->file, name);
     }
     free(name);
-    size_t pl = strlen(path);
-    char *gz = mem_alloc(pl + 4);
-    snprintf(gz, pl + 4, "%s.gz", path);
-    int exists = io_is_dir(path) ? -1 : io_exists(path) || io_exists(gz);
-    free(gz);
+    int exists = io_is_dir(path) ? -1 : io_exists_gz(path);
     if (exists <= 0) {
         int rc = optional && exists == 0 ? 0 : perr(up, line, "cannot open included file '%s'", path);
         free(path);

@@ -333,6 +333,18 @@ int io_exists(const char *path)
     return stat(path, &st) == 0;
 }
 
+int io_exists_gz(const char *path)
+{
+    if (io_exists(path)) return 1;
+    size_t l = strlen(path);
+    char *gz = mem_alloc(l + 4);
+    memcpy(gz, path, l);
+    memcpy(gz + l, ".gz", 4);
+    int r = io_exists(gz);
+    free(gz);
+    return r;
+}
+
 int io_is_dir(const char *path)
 {
     struct stat st;

@@ -46,6 +46,8 @@ int io_commit_dir(const char *tmpdir, const char *dst, Err *e);
 int io_rm_rf(const char *path, Err *e);
 
 int io_exists(const char *path);     /* file or directory */
+/* path or path.gz exists (what io_read_file would find). */
+int io_exists_gz(const char *path);
 int io_is_dir(const char *path);
 /* path joined: returns a newly allocated "a/b". */
 char *io_join(const char *a, const char *b);

@@ -320,20 +320,15 @@ static int load_dir(Part *parts, const char *dir, Err *e)
 {
     for (int w = 0; w < NFILES; w++) {
         char *path = io_join(dir, file_names[w]);
-        size_t l = strlen(path);
-        char *gz = mem_alloc(l + 4);
-        memcpy(gz, path, l);
-        memcpy(gz + l, ".gz", 4);
         int optional = w == F_CART || w == F_PARENT;
         int rc = 0;
-        if (!optional || io_exists(path) || io_exists(gz)) {
+        if (!optional || io_exists_gz(path)) {
             rc = io_read_file(path, &parts[w].own, &parts[w].name, e);
             parts[w].p = parts[w].own.p;
             parts[w].n = parts[w].own.n;
             parts[w].present = rc == 0;
         }
         free(path);
-        free(gz);
         if (rc) return -1;
     }
     return 0;

@@ -420,12 +420,7 @@ long runtime_read_index(const char *case_dir, const char *name)
     char *tdir = io_join(case_dir, name);
     char *path = io_join(tdir, "uniform/time");
     Err e;
-    size_t l = strlen(path);
-    char *gz = mem_alloc(l + 4);
-    snprintf(gz, l + 4, "%s.gz", path);
-    /* dict_read falls back to time.gz itself */
-    Dict *d = io_exists(path) || io_exists(gz) ? dict_read(path, &e) : NULL;
-    free(gz);
+    Dict *d = io_exists_gz(path) ? dict_read(path, &e) : NULL;
     double v = 0;
     if (d && dict_scalar_or(d, "index", 0, &v, &e)) v = 0;
     if (d) dict_free(d);

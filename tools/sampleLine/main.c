@@ -198,12 +198,7 @@ static int read_fields(const Args *a, const Setup *s, const Mesh *m, const char 
         char rel[4096];
         snprintf(rel, sizeof rel, "%s/%s", time, s->fields[i]);
         char *path = args_case_path(a, rel);
-        size_t n = strlen(path);
-        char *gz = mem_alloc(n + 4);
-        memcpy(gz, path, n);
-        memcpy(gz + n, ".gz", 4);
-        int found = io_exists(path) || io_exists(gz);
-        free(gz);
+        int found = io_exists_gz(path);
         int rc = found ? field_read(&d->f[i], m, path, e)
                        : err_set(e, s->fields_file, s->fields_line, "field '%s' not found at time %s: %s does not exist",
                                  s->fields[i], time, path);

@@ -417,12 +417,7 @@ static int read_fields(const Args *a, const Setup *s, const Mesh *m, const char 
         char rel[4096];
         snprintf(rel, sizeof rel, "%s/%s", time, s->fields[i]);
         char *path = args_case_path(a, rel);
-        size_t len = strlen(path);
-        char *gz = mem_alloc(len + 4);
-        memcpy(gz, path, len);
-        memcpy(gz + len, ".gz", 4);
-        int found = io_exists(path) || io_exists(gz);
-        free(gz);
+        int found = io_exists_gz(path);
         if (!found) {
             err_set(e, s->field_file[i], s->field_line[i], "field '%s' not found: %s does not exist", s->fields[i],
                     path);
