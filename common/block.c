@@ -25,7 +25,6 @@
 ** t_i = L (q^i - 1)/(q^n - 1) are evaluated with expm1 so that q close to 1
 ** loses no digits, and t_n = L exactly.
 */
-#define _DEFAULT_SOURCE /* madvise, MADV_HUGEPAGE */
 #include "block.h"
 #include "mem.h"
 
@@ -35,7 +34,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 
 const char *const block_side_names[BLOCK_NSIDES] = {"xMin", "xMax", "yMin", "yMax", "zMin", "zMax"};
 
@@ -376,23 +374,6 @@ void block_free(BlockSpec *s)
 
 /* ---- building the mesh ---- */
 
-/* The grid's big arrays (about 110 bytes per cell) are written once,
-   front to back.  On a fresh 4 KiB-page mapping the page faults alone
-   cost more than filling them (1 s per 400 MB measured on the reference
-   VM), so ask for transparent huge pages; the hint is harmless where it
-   is not supported, and the memory is still plain malloc'ed memory that
-   mesh_free releases with free(). */
-static void *big_alloc(size_t n)
-{
-    void *p = mem_alloc(n);
-#ifdef MADV_HUGEPAGE
-    size_t huge = (size_t)2 << 20;
-    uintptr_t a = ((uintptr_t)p + huge - 1) & ~(uintptr_t)(huge - 1), end = (uintptr_t)p + n;
-    if (n >= 4 * huge && end > a + huge) madvise((void *)a, (end - a) & ~(uintptr_t)(huge - 1), MADV_HUGEPAGE);
-#endif
-    return p;
-}
-
 /* Writes the 4 points of a face with base point b and in-plane strides
    su, sv; plus = normal along +axis. */
 static inline void put_quad(int *q, int b, int su, int sv, int plus)
@@ -522,11 +503,11 @@ int block_mesh(Mesh *m, double *const x[3], const int n[3], const BlockSide side
     m->ncells = (int)nc;
     m->nfaces = (int)nf;
     m->ninternal = (int)nin;
-    m->points = big_alloc(sizeof(double) * 3 * (size_t)np);
-    m->face_off = big_alloc(sizeof(int) * (size_t)(nf + 1));
-    m->face_idx = big_alloc(sizeof(int) * 4 * (size_t)nf);
-    m->owner = big_alloc(sizeof(int) * (size_t)nf);
-    m->neighbour = big_alloc(sizeof(int) * (size_t)(nin ? nin : 1));
+    m->points = mem_alloc(sizeof(double) * 3 * (size_t)np);
+    m->face_off = mem_alloc(sizeof(int) * (size_t)(nf + 1));
+    m->face_idx = mem_alloc(sizeof(int) * 4 * (size_t)nf);
+    m->owner = mem_alloc(sizeof(int) * (size_t)nf);
+    m->neighbour = mem_alloc(sizeof(int) * (size_t)(nin ? nin : 1));
     fill_points(m, x, n);
     for (int64_t f = 0; f <= nf; f++) m->face_off[f] = (int)(4 * f);
     int f = fill_internal(m, n);
@@ -536,7 +517,7 @@ int block_mesh(Mesh *m, double *const x[3], const int n[3], const BlockSide side
         m->cart.x[k] = mem_alloc(sizeof(double) * (size_t)(n[k] + 1));
         memcpy(m->cart.x[k], x[k], sizeof(double) * (size_t)(n[k] + 1));
     }
-    m->cell_parent = big_alloc(sizeof(int) * (size_t)nc);
+    m->cell_parent = mem_alloc(sizeof(int) * (size_t)nc);
     for (int c = 0; c < (int)nc; c++) m->cell_parent[c] = c;
     return 0;
 }

@@ -34,7 +34,11 @@
 ** keyword (polyMesh files) the FoamFile class.  Other lists are ascii even
 ** in binary files (inGroups 1(wall)), as OpenFOAM writes them.  Newlines
 ** inside raw data are not counted in line numbers (OpenFOAM does not
-** either).  An empty binary list is "0" with no brackets.
+** either).  An empty binary list is "0" with no brackets.  On a
+** little-endian host, label=32 and scalar=64 lists (what Kiesel and
+** OpenFOAM write) are copied in one block and then checked in one pass
+** (non-finite scalars); other layouts are decoded item by item.  Both give
+** the same values and the same messages.
 **
 ** Strings follow OpenFOAM: \" is a quote, backslash-newline continues the
 ** line, every other backslash is kept; the writer escapes only quotes, so
@@ -878,7 +882,39 @@ static uint64_t get_le(const unsigned char *s, int nbytes)
     return u;
 }
 
-/* Raw data of `size` items after "N" (P->p after the number). */
+static int host_is_little(void)
+{
+    const uint16_t one = 1;
+    unsigned char c;
+    memcpy(&c, &one, 1);
+    return c == 1;
+}
+
+/* Index of the first inf or nan in v[0..n), or n.  A double is not
+   finite when its exponent bits are all ones; the loop ORs a whole block
+   of those tests so that it runs without a branch per item. */
+static size_t first_non_finite(const double *v, size_t n)
+{
+    const uint64_t expo = 0x7ff0000000000000u;
+    size_t i = 0;
+    for (; i + 64 <= n; i += 64) {
+        int any = 0;
+        for (size_t k = 0; k < 64; k++) {
+            uint64_t u;
+            memcpy(&u, v + i + k, 8);
+            any |= (u & expo) == expo;
+        }
+        if (any) break;
+    }
+    for (; i < n; i++)
+        if (!isfinite(v[i])) return i;
+    return n;
+}
+
+/* Raw data of `size` items after "N" (P->p after the number).  On a
+   little-endian host the usual layouts (label 32, scalar 64 bits) are
+   copied whole and then checked; other layouts are decoded item by
+   item. */
 static int binary_list(Parser *P, long size, int w, int is_label, int line, NodeVec *out)
 {
     const char *what = type_name(w, is_label);
@@ -907,7 +943,20 @@ static int binary_list(Parser *P, long size, int w, int is_label, int line, Node
                     left);
     }
     const unsigned char *s = (const unsigned char *)P->p;
-    if (is_label) {
+    if (is_label && esz == 4 && sizeof(int) == 4 && host_is_little()) {
+        /* the file's layout is the host's: every int32 fits an int */
+        nd->iv = MEM_NEW(int, n);
+        if (n) memcpy(nd->iv, s, n * 4);
+    } else if (!is_label && esz == 8 && host_is_little()) {
+        size_t nper = n * per;
+        nd->v = MEM_NEW(double, nper);
+        if (nper) memcpy(nd->v, s, nper * 8);
+        size_t bad = first_non_finite(nd->v, nper);
+        if (bad < nper) {
+            node_free(nd);
+            return perr(P, line, "binary list of %zu %s holds a non-finite value (item %zu)", n, what, bad / per);
+        }
+    } else if (is_label) {
         nd->iv = MEM_NEW(int, n);
         for (size_t i = 0; i < n; i++) {
             uint64_t u = get_le(s + i * esz, (int)esz);

@@ -79,4 +79,23 @@ void field_patch_values(const Field *f, const Mesh *m, int p, double *out);
 /* Cell index of the first non-finite internal value, or -1. */
 long field_first_nonfinite(const Field *f);
 
+/* ---- the fields of a time directory ---- */
+
+/* "<case_dir>/<time>/<name>" (caller frees). */
+char *field_time_path(const char *case_dir, const char *time, const char *name);
+/* Reads field `name` of time directory <case_dir>/<time> (or its .gz).
+   Returns 0, or -1 with e filled; returns 1 without touching e when the
+   file does not exist, so that the caller can name the dictionary entry
+   that asked for it.  *path (if path is not NULL) receives the file name
+   either way (caller frees). */
+int field_read_time(Field *f, const Mesh *m, const char *case_dir, const char *time, const char *name, char **path,
+                    Err *e);
+/* Reads the vol fields of directory dir in name order into a new array
+   *out: all of them (nwant 0) or those named in want; files of other
+   classes are skipped, except that a wanted one is an error.  Returns the
+   count or -1 (nothing allocated). */
+int field_read_dir(const Mesh *m, const char *dir, const char *const *want, int nwant, Field **out, Err *e);
+/* Frees n fields and the array (f may be NULL; zeroed entries are fine). */
+void field_free_all(Field *f, int n);
+
 #endif

@@ -1,5 +1,16 @@
 /*
 ** io.c: file input and atomic output.  See io.h for the contract.
+**
+** Big files are the common case (a 200^3 polyMesh is 900 MB), so no byte
+** is copied more often than needed: a regular file is read straight into
+** a buffer reserved to its size (no regrowth, no staging copy); a big one
+** can be mapped instead (io_map_file) when the caller copies out of it
+** anyway; a write takes the file as pieces (io_write_atomic_v) so a big
+** array goes from its own memory to the kernel, and gzip output is
+** deflated through a fixed buffer into the file rather than held whole.
+** The gzip stream is the one io_gzip makes (same level, window and
+** strategy, no flushes before the end), so files do not depend on how
+** they were written.
 */
 #include "io.h"
 #include "mem.h"
@@ -10,21 +21,34 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <unistd.h>
 #include <zlib.h>
 
+/* Appends the rest of f to out, reading straight into the buffer: a
+   regular file's size (hint) is reserved up front, so a big file is read
+   with no intermediate copy and no regrowth. */
+static int read_rest(FILE *f, const char *name, Buf *out, size_t hint, Err *e)
+{
+    buf_reserve(out, hint ? hint : 1 << 16);
+    for (;;) {
+        if (out->cap - out->n - 1 == 0) buf_reserve(out, out->cap);
+        size_t room = out->cap - out->n - 1;
+        size_t k = fread(out->p + out->n, 1, room, f);
+        out->n += k;
+        out->p[out->n] = '\0';
+        if (k < room) break;
+    }
+    if (ferror(f)) return err_set(e, name, 0, "read error: %s", strerror(errno));
+    return 0;
+}
+
 int io_read_stream(void *fp, const char *name, Buf *out, Err *e)
 {
-    FILE *f = fp;
-    char tmp[1 << 16];
-    size_t k;
     buf_clear(out);
-    while ((k = fread(tmp, 1, sizeof tmp, f)) > 0) buf_put(out, tmp, k);
-    if (ferror(f)) return err_set(e, name, 0, "read error: %s", strerror(errno));
-    if (!out->p) buf_reserve(out, 0);
-    return 0;
+    return read_rest(fp, name, out, 0, e);
 }
 
 static int is_gzip(const Buf *b)
@@ -135,12 +159,14 @@ int io_read_file(const char *path, Buf *out, char **found_path, Err *e)
             return err_set(e, path, 0, "cannot open file: %s", strerror(en));
         }
         struct stat st;
-        if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+        if (fstat(fileno(f), &st)) st.st_mode = 0;
+        if (S_ISDIR(st.st_mode)) {
             fclose(f);
             free(gz);
             return err_set(e, path, 0, "is a directory, expected a file");
         }
-        int rc = io_read_stream(f, name, &raw, e);
+        size_t hint = S_ISREG(st.st_mode) && st.st_size > 0 ? (size_t)st.st_size + 1 : 0;
+        int rc = read_rest(f, name, &raw, hint, e);
         fclose(f);
         if (rc) {
             free(gz);
@@ -162,6 +188,56 @@ int io_read_file(const char *path, Buf *out, char **found_path, Err *e)
     }
     if (found_path) *found_path = mem_strdup(name);
     free(gz);
+    return 0;
+}
+
+void io_unmap(IoMap *m)
+{
+    if (m->map) munmap(m->map, m->maplen);
+    buf_free(&m->own);
+    m->map = NULL;
+    m->maplen = 0;
+    m->p = NULL;
+    m->n = 0;
+}
+
+/* Maps the regular file at path when it is big and not gzip; returns 1
+   when mapped, 0 when the caller should read it instead. */
+static int try_map(const char *path, IoMap *m)
+{
+    int fd = open(path, O_RDONLY);
+    if (fd < 0) return 0;
+    struct stat st;
+    void *p = MAP_FAILED;
+    if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size >= (1 << 20))
+        p = mmap(NULL, (size_t)st.st_size, PROT_READ, MAP_PRIVATE, fd, 0);
+    close(fd);
+    if (p == MAP_FAILED) return 0;
+    const unsigned char *c = p;
+    if (c[0] == 0x1f && c[1] == 0x8b) {
+        munmap(p, (size_t)st.st_size);
+        return 0;
+    }
+    posix_madvise(p, (size_t)st.st_size, POSIX_MADV_WILLNEED);
+    m->map = p;
+    m->maplen = (size_t)st.st_size;
+    m->p = p;
+    m->n = m->maplen;
+    return 1;
+}
+
+int io_map_file(const char *path, IoMap *m, char **found_path, Err *e)
+{
+    buf_init(&m->own);
+    m->map = NULL;
+    m->maplen = 0;
+    if (strcmp(path, "-") != 0 && try_map(path, m)) {
+        if (found_path) *found_path = mem_strdup(path);
+        return 0;
+    }
+    if (io_read_file(path, &m->own, found_path, e)) return -1;
+    m->p = m->own.p;
+    m->n = m->own.n;
     return 0;
 }
 
@@ -187,19 +263,71 @@ static char *dir_of(const char *path)
     return mem_strndup(path, (size_t)(s - path));
 }
 
+/* Deflates the pieces as one gzip stream (as io_gzip would) into fd,
+   through a fixed output buffer, so the compressed file is never held in
+   memory whole.  Returns 0, -1 with errno set (write error), or -2
+   (zlib failure). */
+static int gzip_to_fd(int fd, const IoPiece *pc, int np)
+{
+    z_stream z;
+    memset(&z, 0, sizeof z);
+    if (deflateInit2(&z, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK) return -2;
+    enum { OUT = 1 << 18 };
+    unsigned char *out = mem_alloc(OUT);
+    int i = 0, rc = 0, zr = Z_OK;
+    size_t left = 0;
+    const char *at = NULL;
+    while (zr != Z_STREAM_END) {
+        while (z.avail_in == 0 && left == 0 && i < np) {
+            at = pc[i].p;
+            left = pc[i++].n;
+        }
+        if (z.avail_in == 0 && left > 0) {
+            uInt chunk = left > (1u << 30) ? (1u << 30) : (uInt)left;
+            z.next_in = (Bytef *)at;
+            z.avail_in = chunk;
+            at += chunk;
+            left -= chunk;
+        }
+        int finish = i == np && left == 0;
+        z.next_out = out;
+        z.avail_out = OUT;
+        zr = deflate(&z, finish ? Z_FINISH : Z_NO_FLUSH);
+        if (zr == Z_STREAM_ERROR) {
+            rc = -2;
+            break;
+        }
+        if (write_all(fd, (const char *)out, OUT - z.avail_out)) {
+            rc = -1;
+            break;
+        }
+    }
+    deflateEnd(&z);
+    free(out);
+    return rc;
+}
+
+static int write_pieces(int fd, const IoPiece *pc, int np)
+{
+    for (int i = 0; i < np; i++)
+        if (write_all(fd, pc[i].p, pc[i].n)) return -1;
+    return 0;
+}
+
 int io_write_atomic(const char *path, const void *data, size_t n, int gzip, Err *e)
+{
+    IoPiece one = {data, n};
+    return io_write_atomic_v(path, &one, 1, gzip, e);
+}
+
+int io_write_atomic_v(const char *path, const IoPiece *pieces, int npieces, int gzip, Err *e)
 {
     if (strcmp(path, "-") == 0) {
         fflush(stdout);
-        if (write_all(STDOUT_FILENO, data, n))
+        if (write_pieces(STDOUT_FILENO, pieces, npieces))
             return err_set(e, "<stdout>", 0, "write error: %s", strerror(errno));
         return 0;
     }
-    Buf z;
-    buf_init(&z);
-    if (gzip && io_gzip(path, data, n, &z, e)) return -1;
-    const char *bytes = gzip ? z.p : data;
-    size_t nbytes = gzip ? z.n : n;
     size_t l = strlen(path);
     char *target = mem_alloc(l + 4);
     memcpy(target, path, l + 1);
@@ -219,7 +347,14 @@ int io_write_atomic(const char *path, const void *data, size_t n, int gzip, Err 
         err_set(e, target, 0, "cannot write file: %s", strerror(errno));
         goto done;
     }
-    if (write_all(fd, bytes, nbytes) || fsync(fd)) {
+    int wr = gzip ? gzip_to_fd(fd, pieces, npieces) : write_pieces(fd, pieces, npieces);
+    if (wr == -2) {
+        err_set(e, path, 0, "gzip compression failed");
+        close(fd);
+        unlink(tmp);
+        goto done;
+    }
+    if (wr || fsync(fd)) {
         err_set(e, target, 0, "write failed: %s (old file kept)", strerror(errno));
         close(fd);
         unlink(tmp);
@@ -243,7 +378,6 @@ done:
     free(dir);
     free(target);
     free(other);
-    buf_free(&z);
     return rc;
 }
 

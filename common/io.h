@@ -9,6 +9,8 @@
 ** that is interrupted or hits a full disk leaves the old file intact.  With
 ** gzip set the file is written as path.gz and a stale uncompressed path is
 ** removed (and vice versa), so a time directory never holds both.
+** io_write_atomic_v does the same for a file given as several pieces
+** (header, big array, footer) without joining them first.
 */
 #ifndef KIESEL_IO_H
 #define KIESEL_IO_H
@@ -27,6 +29,26 @@ int io_read_file(const char *path, Buf *out, char **found_path, Err *e);
 /* Reads all of a FILE* (already open) into out. */
 int io_read_stream(void *fp, const char *name, Buf *out, Err *e);
 
+/* A file's bytes for reading: either a read-only mapping of the file
+   (map != NULL) or a Buf holding them.  p[0..n) is the content (inflated
+   when the file is gzip); it is NOT NUL-terminated when mapped. */
+typedef struct IoMap {
+    const char *p;
+    size_t n;
+    Buf own;
+    void *map;
+    size_t maplen;
+} IoMap;
+
+/* Like io_read_file, but a big uncompressed regular file (>= 1 MB) is
+   mapped rather than copied into fresh memory: for a parser that copies
+   the data out anyway (binary lists) this saves a copy and the page
+   faults of a buffer the size of the file.  The mapping stays valid if
+   the file is replaced (io_write_atomic renames); truncating it in place
+   while mapped is not supported.  io_unmap releases either form. */
+int io_map_file(const char *path, IoMap *m, char **found_path, Err *e);
+void io_unmap(IoMap *m);
+
 /* Inflates gzip data in place of in; returns 0 or -1. */
 int io_gunzip(const char *name, const void *in, size_t n, Buf *out, Err *e);
 /* Deflates data as a gzip stream. */
@@ -35,6 +57,19 @@ int io_gzip(const char *name, const void *in, size_t n, Buf *out, Err *e);
 /* Writes data atomically to path ("-" = stdout, not atomic).  gzip != 0
    writes path.gz instead.  Returns 0 or -1 (disk full, permission, ...). */
 int io_write_atomic(const char *path, const void *data, size_t n, int gzip, Err *e);
+
+/* One piece of a file written by io_write_atomic_v. */
+typedef struct IoPiece {
+    const void *p;
+    size_t n;
+} IoPiece;
+
+/* io_write_atomic of the concatenation of npieces pieces, written (or
+   gzipped) straight from each piece's memory: a file made of a short
+   header, a big array and a footer need not be copied into one buffer
+   first.  Same contract, same bytes on disk as io_write_atomic of the
+   concatenation. */
+int io_write_atomic_v(const char *path, const IoPiece *pieces, int npieces, int gzip, Err *e);
 
 /* Creates a directory and its parents (like mkdir -p). */
 int io_mkdir_p(const char *path, Err *e);

@@ -28,7 +28,13 @@
 **
 ** Writing: each file is assembled in a Buf (reserved to its final size,
 ** so a big mesh is not copied while the buffer grows) and handed to
-** io_write_atomic.  boundary says "format ascii" even in a binary mesh:
+** io_write_atomic_v.  In binary, on a host whose memory layout is the
+** file's (little-endian, 32-bit int), the big arrays are not copied into
+** the Buf: it holds the text around them (header, sizes, brackets,
+** footer) and the arrays are written straight from the mesh as separate
+** pieces, which halves the memory traffic of writing a big mesh; the
+** bytes on disk are the same (the pieces mirror foam_put_scalars and
+** foam_put_labels exactly, and the tests compare files byte for byte).  boundary says "format ascii" even in a binary mesh:
 ** it is text either way, and OpenFOAM reads both.  Patches with groups
 ** NULL get OpenFOAM's default inGroups (1(wall), 1(empty), ...), and the
 ** reader turns that default back into NULL.  Extras that the mesh lacks
@@ -43,6 +49,7 @@
 
 #include <errno.h>
 #include <limits.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -154,8 +161,52 @@ static size_t file_size_hint(const Mesh *m, int which, int binary)
     return sz + 4096;
 }
 
-/* Assembles file `which` of m into b (cleared first). */
-static void mesh_file(const Mesh *m, int which, int binary, Buf *b)
+/* The big arrays of a binary file, left out of its assembled text: the
+   file is text[0..at[0]), raw[0], text[at[0]..at[1]), raw[1], the rest
+   of the text.  At most two (faceCompactList). */
+typedef struct Holes {
+    size_t at[2];
+    IoPiece raw[2];
+    int n;
+} Holes;
+
+/* The arrays can be written from memory as they are when the host's
+   layout is the file's: little-endian, 32-bit int (foam.h). */
+static int raw_is_file_layout(void)
+{
+    const uint16_t one = 1;
+    unsigned char c;
+    memcpy(&c, &one, 1);
+    return c == 1 && sizeof(int) == 4;
+}
+
+/* A binary list of n items of sz bytes at p, as foam_put_scalars and
+   foam_put_labels write it ("N\n(" raw ")\n", an empty list "0\n"),
+   with the raw bytes left as a hole in b. */
+static void put_hole(Buf *b, Holes *h, const void *p, size_t n, size_t sz)
+{
+    buf_printf(b, "%zu\n", n);
+    if (n == 0) return;
+    buf_putc(b, '(');
+    h->at[h->n] = b->n;
+    h->raw[h->n].p = p;
+    h->raw[h->n].n = n * sz;
+    h->n++;
+    buf_puts(b, ")\n");
+}
+
+static void put_labels(Buf *b, Holes *h, const int *v, size_t n, int bin)
+{
+    if (h)
+        put_hole(b, h, v, n, sizeof(int));
+    else
+        foam_put_labels(b, v, n, bin);
+}
+
+/* Assembles file `which` of m into b (cleared first).  With h (binary
+   only, and only when raw_is_file_layout) the big arrays are not copied
+   into b but recorded in h. */
+static void mesh_file(const Mesh *m, int which, int binary, Buf *b, Holes *h)
 {
     static const char *const cls[NFILES] = {"vectorField", "faceList",   "labelList", "labelList",
                                             "polyBoundaryMesh", "dictionary", "labelList"};
@@ -166,27 +217,60 @@ static void mesh_file(const Mesh *m, int which, int binary, Buf *b)
     /* the text-only files say "ascii" whatever the format: a reader that
        sees "binary" might take boundary's "N (" for a raw list */
     int bin = binary && which != F_CART && which != F_BOUNDARY;
+    if (h) h->n = 0;
+    if (!bin) h = NULL;
     buf_clear(b);
-    buf_reserve(b, file_size_hint(m, which, bin));
+    buf_reserve(b, h ? 4096 : file_size_hint(m, which, bin));
     foam_header(b, c, "constant/polyMesh", file_names[which], bin,
                 which == F_OWNER || which == F_NEIGHBOUR ? note : NULL);
     if (which != F_CART && which != F_BOUNDARY) buf_putc(b, '\n');
     switch (which) {
-    case F_POINTS: foam_put_scalars(b, m->points, (size_t)m->npoints, 3, bin, 0); break;
+    case F_POINTS:
+        if (h)
+            put_hole(b, h, m->points, (size_t)m->npoints, 3 * sizeof(double));
+        else
+            foam_put_scalars(b, m->points, (size_t)m->npoints, 3, bin, 0);
+        break;
     case F_FACES: {
         static const int no_faces[1] = {0};
-        foam_put_faces(b, m->face_off ? m->face_off : no_faces, m->face_idx, (size_t)m->nfaces, bin);
+        const int *off = m->face_off ? m->face_off : no_faces;
+        if (h) {
+            put_hole(b, h, off, (size_t)m->nfaces + 1, sizeof(int));
+            buf_putc(b, '\n');
+            put_hole(b, h, m->face_idx, (size_t)off[m->nfaces], sizeof(int));
+        } else {
+            foam_put_faces(b, off, m->face_idx, (size_t)m->nfaces, bin);
+        }
         break;
     }
-    case F_OWNER: foam_put_labels(b, m->owner, (size_t)m->nfaces, bin); break;
-    case F_NEIGHBOUR: foam_put_labels(b, m->neighbour, (size_t)m->ninternal, bin); break;
+    case F_OWNER: put_labels(b, h, m->owner, (size_t)m->nfaces, bin); break;
+    case F_NEIGHBOUR: put_labels(b, h, m->neighbour, (size_t)m->ninternal, bin); break;
     case F_BOUNDARY: put_boundary(b, m); break;
     case F_CART: put_cart(b, &m->cart); break;
-    case F_PARENT: foam_put_labels(b, m->cell_parent, (size_t)m->ncells, bin); break;
+    case F_PARENT: put_labels(b, h, m->cell_parent, (size_t)m->ncells, bin); break;
     }
     /* OpenFOAM leaves two blank lines after a list, one after boundary */
     if (which != F_BOUNDARY && which != F_CART) buf_putc(b, '\n');
     foam_footer(b);
+}
+
+/* The pieces of the file assembled in b with holes h; returns the count
+   (at most 5) and the total size in *total. */
+static int file_pieces(const Buf *b, const Holes *h, IoPiece pc[5], size_t *total)
+{
+    int np = 0;
+    size_t from = 0;
+    *total = b->n;
+    for (int k = 0; h && k < h->n; k++) {
+        pc[np].p = b->p + from;
+        pc[np++].n = h->at[k] - from;
+        pc[np++] = h->raw[k];
+        from = h->at[k];
+        *total += h->raw[k].n;
+    }
+    pc[np].p = b->p + from;
+    pc[np++].n = b->n - from;
+    return np;
 }
 
 /* What the writers rely on: sizes that index the arrays consistently and
@@ -218,27 +302,35 @@ static int check_writable(const Mesh *m, Err *e)
 int mesh_write_stream(const Mesh *m, Buf *out, const MeshWriteOpts *o, Err *e)
 {
     if (check_writable(m, e)) return -1;
+    int binary = o && o->binary, gzip = o && o->gzip;
     Buf b, z;
     buf_init(&b);
     buf_init(&z);
     size_t total = 16;
     for (int w = 0; w < NFILES; w++)
-        if (has_file(m, w)) total += file_size_hint(m, w, o && o->binary) + 64;
+        if (has_file(m, w)) total += file_size_hint(m, w, binary) + 64;
     buf_reserve(out, total);
+    /* uncompressed binary files go from the mesh's arrays straight into
+       out; gzip needs each file whole */
+    Holes holes, *h = binary && !gzip && raw_is_file_layout() ? &holes : NULL;
     for (int w = 0; w < NFILES; w++) {
         if (!has_file(m, w)) continue;
-        mesh_file(m, w, o && o->binary, &b);
-        const Buf *src = &b;
-        if (o && o->gzip) {
+        mesh_file(m, w, binary, &b, h);
+        IoPiece pc[5];
+        size_t size;
+        int np = file_pieces(&b, h, pc, &size);
+        if (gzip) {
             if (io_gzip(file_names[w], b.p, b.n, &z, e)) {
                 buf_free(&b);
                 buf_free(&z);
                 return -1;
             }
-            src = &z;
+            pc[0].p = z.p;
+            pc[0].n = size = z.n;
+            np = 1;
         }
-        buf_printf(out, "@file %s%s %zu\n", file_names[w], o && o->gzip ? ".gz" : "", src->n);
-        buf_put(out, src->p, src->n);
+        buf_printf(out, "@file %s%s %zu\n", file_names[w], gzip ? ".gz" : "", size);
+        for (int k = 0; k < np; k++) buf_put(out, pc[k].p, pc[k].n);
     }
     buf_puts(out, "@end\n");
     buf_free(&b);
@@ -273,13 +365,17 @@ int mesh_write(const Mesh *m, const char *dir, const MeshWriteOpts *o, Err *e)
         return rc;
     }
     if (check_writable(m, e) || io_mkdir_p(dir, e)) return -1;
+    int binary = o && o->binary;
     Buf b;
     buf_init(&b);
-    /* one buffer, sized for the largest file, serves them all: its pages
-       are touched once rather than once per file */
+    /* binary: the big arrays are written from the mesh itself (holes), b
+       holds only the text around them.  ascii: one buffer, sized for the
+       largest file, serves them all: its pages are touched once rather
+       than once per file */
+    Holes holes, *h = binary && raw_is_file_layout() ? &holes : NULL;
     size_t big = 0;
-    for (int w = 0; w < NFILES; w++)
-        if (has_file(m, w) && file_size_hint(m, w, o && o->binary) > big) big = file_size_hint(m, w, o && o->binary);
+    for (int w = 0; w < NFILES && !h; w++)
+        if (has_file(m, w) && file_size_hint(m, w, binary) > big) big = file_size_hint(m, w, binary);
     buf_reserve(&b, big);
     int rc = 0;
     for (int w = 0; w < NFILES && !rc; w++) {
@@ -287,9 +383,12 @@ int mesh_write(const Mesh *m, const char *dir, const MeshWriteOpts *o, Err *e)
             rc = remove_stale(dir, file_names[w], e);
             continue;
         }
-        mesh_file(m, w, o && o->binary, &b);
+        mesh_file(m, w, binary, &b, h);
+        IoPiece pc[5];
+        size_t size;
+        int np = file_pieces(&b, h, pc, &size);
         char *path = io_join(dir, file_names[w]);
-        rc = io_write_atomic(path, b.p, b.n, o && o->gzip, e);
+        rc = io_write_atomic_v(path, pc, np, o && o->gzip, e);
         free(path);
     }
     buf_free(&b);
@@ -298,12 +397,13 @@ int mesh_write(const Mesh *m, const char *dir, const MeshWriteOpts *o, Err *e)
 
 /* ---- reading ---- */
 
-/* One file's bytes (inside a stream, or owned after reading or
-   inflating) and the name its messages carry. */
+/* One file's bytes (inside a stream, or owned after inflating, or read
+   or mapped from a directory) and the name its messages carry. */
 typedef struct Part {
     const char *p;
     size_t n;
     Buf own;
+    IoMap file;
     char *name;
     int present;
 } Part;
@@ -312,10 +412,13 @@ static void parts_free(Part *parts)
 {
     for (int w = 0; w < NFILES; w++) {
         buf_free(&parts[w].own);
+        io_unmap(&parts[w].file);
         free(parts[w].name);
     }
 }
 
+/* Big files are mapped rather than read (io_map_file): the parser copies
+   the binary lists out of them anyway. */
 static int load_dir(Part *parts, const char *dir, Err *e)
 {
     for (int w = 0; w < NFILES; w++) {
@@ -323,9 +426,9 @@ static int load_dir(Part *parts, const char *dir, Err *e)
         int optional = w == F_CART || w == F_PARENT;
         int rc = 0;
         if (!optional || io_exists_gz(path)) {
-            rc = io_read_file(path, &parts[w].own, &parts[w].name, e);
-            parts[w].p = parts[w].own.p;
-            parts[w].n = parts[w].own.n;
+            rc = io_map_file(path, &parts[w].file, &parts[w].name, e);
+            parts[w].p = parts[w].file.p;
+            parts[w].n = parts[w].file.n;
             parts[w].present = rc == 0;
         }
         free(path);

@@ -450,3 +450,90 @@ int runtime_purge(const Control *c, const char *case_dir, Err *e)
     runtime_free_times(t, n);
     return rc;
 }
+
+/* ---- times to process ---- */
+
+/* The list is selected on a copy, since runtime_select drops entries in
+   place, and the positions of the kept names are looked up in the full
+   list, which tools need for indices and series files. */
+int runtime_select_case(TimeSel *s, const char *case_dir, const char *spec, int latest, int nozero, Err *e)
+{
+    memset(s, 0, sizeof *s);
+    int n = runtime_list_times(case_dir, &s->all, e);
+    if (n < 0) return -1;
+    s->nall = n;
+    TimeDir *pick = MEM_NEW(TimeDir, n);
+    for (int i = 0; i < n; i++) pick[i] = (TimeDir){s->all[i].value, mem_strdup(s->all[i].name)};
+    int k = runtime_select(pick, n, spec, latest, nozero, e);
+    if (k >= 0) {
+        s->sel = MEM_NEW(int, k);
+        for (int i = 0; i < k; i++)
+            for (int j = 0; j < n; j++)
+                if (!strcmp(pick[i].name, s->all[j].name)) s->sel[i] = j;
+        s->n = k;
+    }
+    runtime_free_times(pick, n);
+    if (k < 0) runtime_free_sel(s);
+    return k;
+}
+
+/* The start time as OpenFOAM's utilities take it by default: startFrom
+   latestTime or firstTime, else the directory named like startTime (time 0
+   without a controlDict). */
+static int start_index(const Control *c, const TimeDir *t, int n, char name[64])
+{
+    strcpy(name, "0");
+    if (c && c->startFrom == START_LATEST) return n - 1;
+    if (c && c->startFrom == START_FIRST) return n ? 0 : -1;
+    if (c) runtime_time_name(c, c->startTime, name);
+    int pick = -1;
+    for (int i = 0; i < n; i++)
+        if (!strcmp(t[i].name, name)) pick = i;
+    return pick;
+}
+
+int runtime_pick_times(TimeSel *s, const char *case_dir, const char *spec, int latest, int nozero, const Control *c,
+                       Err *e)
+{
+    if (spec || latest || nozero) {
+        int k = runtime_select_case(s, case_dir, spec, latest, nozero, e);
+        if (k == 0) {
+            runtime_free_sel(s);
+            return err_set(e, case_dir, 0, "no time directory matches the selection");
+        }
+        return k;
+    }
+    memset(s, 0, sizeof *s);
+    int n = runtime_list_times(case_dir, &s->all, e);
+    if (n < 0) return -1;
+    s->nall = n;
+    char name[64];
+    int pick = start_index(c, s->all, n, name);
+    if (pick < 0) {
+        runtime_free_sel(s);
+        return err_set(e, case_dir, 0, "start time directory '%s' not found", name);
+    }
+    s->sel = MEM_NEW(int, 1);
+    s->sel[0] = pick;
+    s->n = 1;
+    return 1;
+}
+
+const TimeDir *runtime_sel_time(const TimeSel *s, int i) { return &s->all[s->sel[i]]; }
+
+void runtime_free_sel(TimeSel *s)
+{
+    runtime_free_times(s->all, s->nall);
+    free(s->sel);
+    memset(s, 0, sizeof *s);
+}
+
+int runtime_read_control_opt(Control *c, const char *case_dir, Err *e)
+{
+    memset(c, 0, sizeof *c);
+    char *path = io_join(case_dir, "system/controlDict");
+    int have = io_exists(path);
+    free(path);
+    if (!have) return 0;
+    return runtime_read_control(c, case_dir, e) ? -1 : 1;
+}

@@ -82,4 +82,33 @@ long runtime_read_index(const char *case_dir, const char *name);
 /* Removes the oldest time dirs beyond purgeWrite (never startTime's). */
 int runtime_purge(const Control *c, const char *case_dir, Err *e);
 
+/* ---- times to process ---- */
+
+/* Every time directory of a case (all[0..nall-1], sorted) and the ones a
+   tool processes, as positions into all: sel[0..n-1]. */
+typedef struct TimeSel {
+    TimeDir *all;
+    int nall;
+    int *sel;
+    int n;
+} TimeSel;
+
+/* Lists the case's times and selects by -time/-latestTime/-noZero (as
+   runtime_select).  Returns the count selected (0 is not an error here), or
+   -1 with e (and s empty). */
+int runtime_select_case(TimeSel *s, const char *case_dir, const char *spec, int latest, int nozero, Err *e);
+/* As OpenFOAM's setFields chooses: the selection when any of spec, latest,
+   nozero is given (an empty one is an error), else the one start time of
+   controlDict c (startFrom; c NULL means time 0).  Returns the count >= 1
+   or -1 with e. */
+int runtime_pick_times(TimeSel *s, const char *case_dir, const char *spec, int latest, int nozero, const Control *c,
+                       Err *e);
+/* The i-th selected time. */
+const TimeDir *runtime_sel_time(const TimeSel *s, int i);
+void runtime_free_sel(TimeSel *s);
+
+/* Reads <case>/system/controlDict when it exists: returns 1 when read, 0
+   when absent (c zeroed), -1 on error. */
+int runtime_read_control_opt(Control *c, const char *case_dir, Err *e);
+
 #endif

@@ -1,0 +1,82 @@
+/*
+** setfields.h: setFieldsDict: default values and regions, parsed into
+** shapes (region.h) with the values they set, and applied to the vol
+** fields of a time directory.
+**
+**   defaultFieldValues ( volScalarFieldValue alpha.s 0 ... );
+**   regions ( sphereToCell { centre (..); radius ..; fieldValues (..); } ... );
+**
+** Every cell first gets the default values; then each region, in order,
+** blends its values in with the cell's volume fraction f inside the shape:
+** v = (1 - f) v + f v_region (`fractional no;` uses OpenFOAM's rule: f = 1
+** when the cell centre is inside, else 0).
+**
+** The whole dictionary is checked and every field read before anything is
+** written, and each field file is replaced atomically, so a bad dictionary
+** or a missing field leaves the case untouched.  Progress text goes into a
+** Buf for the tool to print: the library never prints.
+*/
+#ifndef KIESEL_SETFIELDS_H
+#define KIESEL_SETFIELDS_H
+
+#include "buf.h"
+#include "dict.h"
+#include "err.h"
+#include "field.h"
+#include "mesh.h"
+#include "region.h"
+
+/* One "volScalarFieldValue NAME value" item. */
+typedef struct SetValue {
+    const char *name;  /* lives as long as the dictionary */
+    int width;         /* 1 or 3 */
+    double v[3];
+    int field;         /* index into SetFields.fields */
+    const char *file;
+    int line;
+} SetValue;
+
+typedef struct SetRegion {
+    const char *type;  /* "sphereToCell" */
+    Region shape;
+    int fractional;
+    SetValue *vals;
+    int nvals;
+    const char *file;
+    int line;
+} SetRegion;
+
+typedef struct SetFields {
+    SetValue *defaults;
+    int ndefaults;
+    SetRegion *regions;
+    int nregions;
+    const char **fields;   /* distinct field names in order of first use */
+    int *widths;
+    const char **field_file;  /* where each field is first set */
+    int *field_line;
+    int nfields;
+} SetFields;
+
+/* Top-level keywords and the help text on region types, for -help. */
+extern const DictKey setfields_keys[];
+extern const char setfields_help[];
+
+/* Parses and checks the whole dictionary (s need not be initialised; it
+   is always safe to setfields_free afterwards).  Names point into d. */
+int setfields_parse(SetFields *s, const Dict *d, Err *e);
+void setfields_free(SetFields *s);
+
+/* Fits the shapes to the mesh (with geometry): on a 2-D mesh (one cell
+   thick between empty patches) each shape is replaced by its section
+   through its centre, extruded (region_flatten), so spheres and cylinders
+   along the empty axis set discs.  Appends the "Mesh: ..." report. */
+void setfields_on_mesh(SetFields *s, const Mesh *m, Buf *log);
+
+/* Reads the fields of <case_dir>/<time>, sets the defaults and regions
+   and writes the fields back (o->location is replaced by time), appending
+   the progress report to log. */
+int setfields_time(const SetFields *s, const Mesh *m, const char *case_dir, const char *time,
+                   const FieldWriteOpts *o, Buf *log, Err *e);
+
+#endif

@@ -1,0 +1,243 @@
+/*
+** vtkcase.c: the VTK/ directory of a case (see vtkcase.h).
+**
+** File names are built relative to the case ("VTK/p/p_3.vtk") because
+** that is how the report names them; every file is then written through
+** vtk.h at <case>/<relative name>.  Time indices are fixed once per run
+** for all times of the case, converted or not, so that the series files
+** can find the files of earlier runs.
+*/
+#include "vtkcase.h"
+
+#include "io.h"
+#include "mem.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* Base name of the absolute case path: the last component of cwd/case
+   once "." and ".." are resolved ("-case ." in .../cavity gives cavity). */
+static char *case_name(const char *case_dir)
+{
+    char cwd[4096];
+    const char *base = case_dir[0] == '/' || !getcwd(cwd, sizeof cwd) ? "" : cwd;
+    char *full = io_join(base, case_dir);
+    int ncomp = 0;
+    char **comp = mem_alloc((strlen(full) + 1) * sizeof(char *));
+    char *save = NULL;
+    for (char *t = strtok_r(full, "/", &save); t; t = strtok_r(NULL, "/", &save)) {
+        if (!strcmp(t, ".")) continue;
+        if (!strcmp(t, "..")) ncomp -= ncomp > 0;
+        else comp[ncomp++] = t;
+    }
+    char *name = mem_strdup(ncomp > 0 ? comp[ncomp - 1] : "case");
+    free(comp);
+    free(full);
+    return name;
+}
+
+/* The selected times, or a lone time 0 when the case has none (whatever
+   the selection asks for: there is only the mesh to write). */
+static int select_times(TimeSel *s, const char *case_dir, const char *spec, int latest, int nozero, Err *e)
+{
+    TimeDir *t;
+    int n = runtime_list_times(case_dir, &t, e);
+    if (n < 0) return -1;
+    runtime_free_times(t, n);
+    if (n == 0) {
+        s->all = MEM_NEW(TimeDir, 1);
+        s->all[0] = (TimeDir){0, mem_strdup("0")};
+        s->nall = 1;
+        s->sel = MEM_NEW(int, 1);
+        s->n = 1;
+        return 1;
+    }
+    int k = runtime_select_case(s, case_dir, spec, latest, nozero, e);
+    if (k == 0)
+        return err_set(e, case_dir, 0, "no time selected among %d time directories (%s to %s)", s->nall,
+                       s->all[0].name, s->all[s->nall - 1].name);
+    return k;
+}
+
+/* Time step index of every time: uniform/time, else the list position;
+   positions for all if those numbers are not distinct. */
+static long *time_indices(const char *case_dir, const TimeDir *t, int n)
+{
+    long *idx = MEM_NEW(long, n);
+    for (int i = 0; i < n; i++) {
+        char *rel = io_join(t[i].name, "uniform/time"), *path = io_join(case_dir, rel);
+        idx[i] = io_exists(path) ? runtime_read_index(case_dir, t[i].name) : i;
+        free(rel);
+        free(path);
+    }
+    int clash = 0;
+    for (int i = 0; i < n && !clash; i++)
+        for (int j = i + 1; j < n && !clash; j++) clash = idx[i] == idx[j];
+    if (clash)
+        for (int i = 0; i < n; i++) idx[i] = i;
+    return idx;
+}
+
+int vtkcase_open(VtkCase *v, const char *case_dir, const Mesh *m, const char *spec, int latest, int nozero,
+                 Err *e)
+{
+    memset(v, 0, sizeof *v);
+    v->case_dir = case_dir;
+    v->m = m;
+    vtk_opts_init(&v->opts);
+    v->boundary = 1;
+    if (select_times(&v->times, case_dir, spec, latest, nozero, e) < 0) return -1;
+    v->name = case_name(case_dir);
+    v->index = time_indices(case_dir, v->times.all, v->times.nall);
+    return 0;
+}
+
+void vtkcase_free(VtkCase *v)
+{
+    runtime_free_sel(&v->times);
+    free(v->name);
+    free(v->index);
+    memset(v, 0, sizeof *v);
+}
+
+int vtkcase_mkdir(const VtkCase *v, int overwrite, Err *e)
+{
+    char *dir = io_join(v->case_dir, "VTK");
+    int rc = (overwrite && io_rm_rf(dir, e)) || io_mkdir_p(dir, e) ? -1 : 0;
+    free(dir);
+    return rc;
+}
+
+static void put_fields(Buf *log, const Field *f, int n)
+{
+    for (int w = 1; w <= 3; w += 2) {
+        int any = 0;
+        for (int i = 0; i < n; i++)
+            if (f[i].width == w) {
+                if (!any) buf_printf(log, "    %s :", w == 1 ? "volScalar" : "volVector");
+                buf_printf(log, " %s", f[i].name);
+                any = 1;
+            }
+        if (any) buf_putc(log, '\n');
+    }
+}
+
+int vtkcase_read_fields(const VtkCase *v, int i, const char *const *want, int nwant, Field **f, Buf *log, Err *e)
+{
+    char *dir = io_join(v->case_dir, runtime_sel_time(&v->times, i)->name);
+    *f = NULL;
+    int n = io_is_dir(dir) ? field_read_dir(v->m, dir, want, nwant, f, e) : 0;
+    free(dir);
+    if (n > 0) put_fields(log, *f, n);
+    return n;
+}
+
+/* "<dir>/<base>_<index>.vtk", relative to the case. */
+static char *vtk_file(const char *dir, const char *base, long index)
+{
+    size_t l = strlen(dir) + strlen(base) + 32;
+    char *s = mem_alloc(l);
+    snprintf(s, l, "%s/%s_%ld.vtk", dir, base, index);
+    return s;
+}
+
+/* Patch p gets a file of its own unless it is of type empty. */
+static int patch_written(const VtkCase *v, int p) { return v->boundary && strcmp(v->m->patches[p].type, "empty"); }
+
+static int write_patch(const VtkCase *v, int p, long index, VtkOpts *o, const Field *f, int nf, Buf *log, Err *e)
+{
+    const Patch *pa = &v->m->patches[p];
+    char *dir = io_join("VTK", pa->name), *adir = io_join(v->case_dir, dir);
+    char *rel = vtk_file(dir, pa->name, index), *path = io_join(v->case_dir, rel);
+    o->title = pa->name;
+    int rc = io_mkdir_p(adir, e);
+    if (rc == 0) rc = vtk_write_patch(path, v->m, p, f, nf, o, e);
+    if (rc == 0) buf_printf(log, "    Boundary  : %s\n", rel);
+    free(dir);
+    free(adir);
+    free(rel);
+    free(path);
+    return rc;
+}
+
+int vtkcase_write_time(const VtkCase *v, int i, const Field *f, int nf, Buf *log, Err *e)
+{
+    int t = v->times.sel[i];
+    VtkOpts o = v->opts;
+    o.time = v->times.all[t].value;
+    o.title = v->name;
+    char *rel = vtk_file("VTK", v->name, v->index[t]), *path = io_join(v->case_dir, rel);
+    int rc = vtk_write_internal(path, v->m, f, nf, &o, e);
+    if (rc == 0) buf_printf(log, "    Internal  : %s\n", rel);
+    free(rel);
+    free(path);
+    for (int p = 0; p < v->m->npatches && rc == 0; p++)
+        if (patch_written(v, p)) rc = write_patch(v, p, v->index[t], &o, f, nf, log, e);
+    return rc;
+}
+
+/* <dir>/<base>.vtk.series listing the times whose <base>_<index>.vtk exist. */
+static int write_series(const VtkCase *v, const char *dir, const char *base, Buf *log, Err *e)
+{
+    int n = v->times.nall;
+    VtkSeriesEntry *s = MEM_NEW(VtkSeriesEntry, n);
+    char **names = MEM_NEW(char *, n);
+    int k = 0;
+    for (int i = 0; i < n; i++) {
+        char *rel = vtk_file(dir, base, v->index[i]), *path = io_join(v->case_dir, rel);
+        if (io_exists(path)) {
+            names[k] = mem_strdup(strrchr(rel, '/') + 1);
+            s[k].name = names[k];
+            s[k].time = v->times.all[i].value;
+            k++;
+        }
+        free(rel);
+        free(path);
+    }
+    size_t l = strlen(dir) + strlen(base) + 16;
+    char *rel = mem_alloc(l);
+    snprintf(rel, l, "%s/%s.vtk.series", dir, base);
+    char *path = io_join(v->case_dir, rel);
+    int rc = vtk_write_series(path, s, k, e);
+    if (rc == 0) buf_printf(log, "    Series    : %s (%d time%s)\n", rel, k, k == 1 ? "" : "s");
+    io_free_list(names, k);
+    free(s);
+    free(rel);
+    free(path);
+    return rc;
+}
+
+int vtkcase_write_series(const VtkCase *v, Buf *log, Err *e)
+{
+    int rc = write_series(v, "VTK", v->name, log, e);
+    for (int p = 0; p < v->m->npatches && rc == 0; p++) {
+        if (!patch_written(v, p)) continue;
+        char *dir = io_join("VTK", v->m->patches[p].name);
+        rc = write_series(v, dir, v->m->patches[p].name, log, e);
+        free(dir);
+    }
+    return rc;
+}
+
+int vtkcase_field_names(const char *spec, char ***names)
+{
+    char **v = mem_alloc((strlen(spec) + 1) * sizeof(char *));
+    int n = 0;
+    for (const char *p = spec; *p;) {
+        size_t k = strcspn(p, " \t\n(),");
+        if (k == 0) {
+            p++;
+            continue;
+        }
+        char *w = mem_strndup(p, k);
+        int dup = 0;
+        for (int i = 0; i < n && !dup; i++) dup = !strcmp(v[i], w);
+        if (dup) free(w);
+        else v[n++] = w;
+        p += k;
+    }
+    *names = v;
+    return n;
+}
