@@ -1,8 +1,9 @@
 /*
 ** buf.h: growable byte buffer.
 **
-** Every file Kiesel writes is first assembled in a Buf and then handed to
-** io_write_atomic, which puts it on disk in one rename.  The buffer keeps
+** Files Kiesel writes are assembled in a Buf and handed to io_write_atomic,
+** which puts them on disk in one rename (big binary arrays skip the copy
+** through io_write_atomic_v).  The buffer keeps
 ** a terminating NUL after the data (not counted in n) so text can be
 ** parsed in place.
 */
