@@ -2798,3 +2798,27 @@ static void write_dict(const Dict *d, Buf *out, int indent, int blank)
 void dict_write(const Dict *d, Buf *out) { write_dict(d, out, 0, 1); }
 
 void dict_write_body(const Dict *d, Buf *out, int indent) { write_dict(d, out, indent, 0); }
+
+int dict_node_take_scalars(DictNode *nd, int width, double **out, size_t *n, Err *e)
+{
+    if (nd->kind == DN_NUMS && nd->width == width && nd->v) {
+        *out = nd->v;
+        *n = nd->n;
+        nd->v = NULL;
+        nd->n = 0;
+        return 0;
+    }
+    return dict_node_scalars(nd, width, out, n, e);
+}
+
+int dict_node_take_labels(DictNode *nd, int **out, size_t *n, Err *e)
+{
+    if (nd->kind == DN_LABELS && nd->iv) {
+        *out = nd->iv;
+        *n = nd->n;
+        nd->iv = NULL;
+        nd->n = 0;
+        return 0;
+    }
+    return dict_node_labels(nd, out, n, e);
+}

@@ -166,8 +166,14 @@ size_t dict_node_len(const DictNode *nd);
    numbers or of width-tuples, NUMS, LABELS.  Fails with file:line when an
    item has the wrong shape. */
 int dict_node_scalars(const DictNode *nd, int width, double **out, size_t *n, Err *e);
+/* As dict_node_scalars, but a compact list of that width hands over its
+   array instead of copying it (the node is left empty): readers of big
+   lists (points, internalField) avoid a copy of the whole list. */
+int dict_node_take_scalars(DictNode *nd, int width, double **out, size_t *n, Err *e);
 /* Copies a list of integers into a new int array. */
 int dict_node_labels(const DictNode *nd, int **out, size_t *n, Err *e);
+/* As dict_node_labels, handing over a compact label list's array. */
+int dict_node_take_labels(DictNode *nd, int **out, size_t *n, Err *e);
 /* Copies a list of integer lists (RAGGED, or a LIST of LABELS/LIST) into
    off[n+1], idx[off[n]]. */
 int dict_node_faces(const DictNode *nd, int **off, int **idx, size_t *n, Err *e);

@@ -325,7 +325,7 @@ static int read_values(const DictEntry *en, int width, int count, const ValueCtx
         size_nd = en->vals[k++];
     if (k + 1 != en->nvals)
         return err_set(e, file, en->line, "%s: expected one list after 'nonuniform'", c->what);
-    const DictNode *nd = en->vals[k];
+    DictNode *nd = en->vals[k];
     if (size_nd && size_nd->num != (double)dict_node_len(nd))
         return err_set(e, file, size_nd->line, "%s: list size %.0f does not match the %zu items read", c->what,
                        size_nd->num, dict_node_len(nd));
@@ -347,7 +347,7 @@ static int read_values(const DictEntry *en, int width, int count, const ValueCtx
     size_t got = 0;
     if (n == 0) {
         v = MEM_NEW(double, 1);
-    } else if (dict_node_scalars(nd, width, &v, &got, e)) {
+    } else if (dict_node_take_scalars(nd, width, &v, &got, e)) {
         return -1;
     } else if (got != n) {
         free(v);

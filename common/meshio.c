@@ -540,30 +540,6 @@ static int fits_int(size_t n, const char *name, int line, Err *e)
    them in the wanted flat form (the Dict is freed right after reading),
    which saves a copy of the largest arrays; otherwise the dict_node_*
    accessors convert. */
-static int take_scalars(DictNode *nd, int width, double **out, size_t *n, Err *e)
-{
-    if (nd->kind == DN_NUMS && nd->width == width && nd->v) {
-        *out = nd->v;
-        *n = nd->n;
-        nd->v = NULL;
-        nd->n = 0;
-        return 0;
-    }
-    return dict_node_scalars(nd, width, out, n, e);
-}
-
-static int take_labels(DictNode *nd, int **out, size_t *n, Err *e)
-{
-    if (nd->kind == DN_LABELS && nd->iv) {
-        *out = nd->iv;
-        *n = nd->n;
-        nd->iv = NULL;
-        nd->n = 0;
-        return 0;
-    }
-    return dict_node_labels(nd, out, n, e);
-}
-
 static int take_faces(DictNode *nd, int **off, int **idx, size_t *n, Err *e)
 {
     if (nd->kind == DN_RAGGED && nd->off && nd->iv) {
@@ -583,7 +559,7 @@ static int read_points(Mesh *m, const Dict *d, const char *name, Err *e)
     size_t nv, n;
     if (body(d, name, &v, &nv, e)) return -1;
     if (nv != 1) return err_set(e, name, list_line(v), "expected one list of points, found %zu values", nv);
-    if (take_scalars(v[0], 3, &m->points, &n, e) || fits_int(n, name, list_line(v), e)) return -1;
+    if (dict_node_take_scalars(v[0], 3, &m->points, &n, e) || fits_int(n, name, list_line(v), e)) return -1;
     m->npoints = (int)n;
     return 0;
 }
@@ -599,7 +575,7 @@ static int read_faces(Mesh *m, const Dict *d, const char *name, Err *e)
     } else if (nv == 2) {
         /* faceCompactList: offsets (nfaces+1), then the flat point list */
         size_t no, ni;
-        if (take_labels(v[0], &m->face_off, &no, e) || take_labels(v[1], &m->face_idx, &ni, e))
+        if (dict_node_take_labels(v[0], &m->face_off, &no, e) || dict_node_take_labels(v[1], &m->face_idx, &ni, e))
             return -1;
         if (fits_int(no, name, line, e) || fits_int(ni, name, line, e)) return -1;
         if (no == 0) {
@@ -640,7 +616,7 @@ static int read_labels(const Dict *d, const char *name, int **out, size_t *n, lo
     if (body(d, name, &v, &nv, e)) return -1;
     int line = list_line(v);
     if (nv != 1) return err_set(e, name, line, "expected one list of labels, found %zu values", nv);
-    if (take_labels(v[0], out, n, e) || fits_int(*n, name, line, e)) return -1;
+    if (dict_node_take_labels(v[0], out, n, e) || fits_int(*n, name, line, e)) return -1;
     if (want >= 0 && *n != (size_t)want)
         return err_set(e, name, line, "%zu labels, expected %ld (%s)", *n, want, what);
     for (size_t i = 0; i < *n; i++)
