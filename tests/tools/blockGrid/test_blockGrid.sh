@@ -4,7 +4,7 @@
 # bad dictionary (file:line, non-zero exit, old grid untouched), binary and
 # gzip output, and OpenFOAM's checkMesh when it is installed.
 set -u
-BIN=${KIESEL_BIN:-/work/main/bin}
+BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
 
 pass() { echo "PASS $1"; }

@@ -4,7 +4,7 @@
 # or face named; a hand-made skewed grid gives checkMesh's numbers (when
 # OpenFOAM is installed).
 set -u
-BIN=${KIESEL_BIN:-/work/main/bin}
+BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
 
 pass() { echo "PASS $1"; }

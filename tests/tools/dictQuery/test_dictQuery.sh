@@ -3,7 +3,7 @@
 # keywords as read (after #include and $ expansion), and reports bad input
 # as file:line with exit status 1.  Runs in a scratch directory.
 set -u
-BIN=${KIESEL_BIN:-/work/main/bin}
+BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 DQ="$BIN/dictQuery"
 if [ ! -x "$DQ" ]; then
     echo "FAIL dictQuery_exists: $DQ not built"

@@ -7,7 +7,7 @@
 # Numbers are compared as numbers (foamDictionary reformats 2.0 as 2) and
 # lists token by token.  SKIPs when OpenFOAM or its tutorials are absent.
 set -u
-BIN=${KIESEL_BIN:-/work/main/bin}
+BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 DQ="$BIN/dictQuery"
 TUT=${FOAM_TUTORIALS_DIR:-/usr/share/doc/openfoam-examples/examples}
 [ -d /usr/share/openfoam ] && export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}

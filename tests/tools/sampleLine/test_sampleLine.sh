@@ -7,7 +7,7 @@
 # streams the same CSV, -latestTime, and bad dictionaries fail with
 # file:line.
 set -u
-BIN=${KIESEL_BIN:-/work/main/bin}
+BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 PY=/usr/bin/python3
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
 

@@ -7,7 +7,7 @@
 # The fields and cell volumes are read back by a small Python parser
 # (ascii fields; volumes from the grid's cartesianGrid).
 set -u
-BIN=${KIESEL_BIN:-/work/main/bin}
+BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
 
 pass() { echo "PASS $1"; }

@@ -21,7 +21,7 @@ import os
 import subprocess
 import sys
 
-BIN = os.environ.get("KIESEL_BIN", "/work/main/bin")
+BIN = os.environ.get("KIESEL_BIN", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "bin"))
 TOL = 1e-12
 
 HEADER = """FoamFile

@@ -6,8 +6,8 @@
 # test_vtk_reader.py.  If OpenFOAM's foamToVTK is installed, its -legacy
 # output is compared with ours (file layout and cell count); SKIP otherwise.
 set -u
-BIN=${KIESEL_BIN:-/work/main/bin}
-TOP=${KIESEL_TOP:-/work/main}
+BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
+TOP=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
 HERE=$TOP/tests/tools/writeVTK
 TOOL=$BIN/writeVTK
 PY=/usr/bin/python3
