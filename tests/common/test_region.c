@@ -6,6 +6,7 @@
 ** accident.  The sum over cells of fraction * volume is compared with the
 ** analytic volume of the shape (or of its intersection with the domain).
 */
+#include "fixture.h"
 #include "test.h"
 
 #include "block.h"
@@ -29,16 +30,7 @@ static void make_grid(Mesh *m, const int n[3], const double lo[3], const double 
         }
         x[k][n[k]] = hi[k];
     }
-    BlockSide side[BLOCK_NSIDES];
-    for (int s = 0; s < BLOCK_NSIDES; s++) side[s] = (BlockSide){block_side_names[s], "patch", NULL};
-    Err e;
-    mesh_init(m);
-    if (block_mesh(m, x, n, side, NULL, "test", NULL, &e)) {
-        printf("block_mesh: %s\n", e.msg);
-        exit(1);
-    }
-    mesh_cell_faces(m);
-    mesh_geometry(m);
+    fixture_mesh(m, x, n);
     for (int k = 0; k < 3; k++) free(x[k]);
 }
 

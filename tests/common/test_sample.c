@@ -5,6 +5,7 @@
 ** cell follows from the axis coordinates (cart.x), cells being numbered
 ** i + nx*(j + ny*k).
 */
+#include "fixture.h"
 #include "test.h"
 
 #include "block.h"
@@ -24,16 +25,7 @@ static void make_grid(Mesh *m, const int n[3], const double lo[3], const double 
         for (int i = 0; i <= n[k]; i++) x[k][i] = lo[k] + (hi[k] - lo[k]) * pow((double)i / n[k], p[k]);
         x[k][n[k]] = hi[k];
     }
-    BlockSide side[BLOCK_NSIDES];
-    for (int s = 0; s < BLOCK_NSIDES; s++) side[s] = (BlockSide){block_side_names[s], "patch", NULL};
-    Err e;
-    mesh_init(m);
-    if (block_mesh(m, x, n, side, NULL, "test", NULL, &e)) {
-        printf("block_mesh: %s\n", e.msg);
-        exit(1);
-    }
-    mesh_cell_faces(m);
-    mesh_geometry(m);
+    fixture_mesh(m, x, n);
     for (int k = 0; k < 3; k++) free(x[k]);
 }
 
