@@ -14,7 +14,7 @@ CC      ?= gcc
 CSTD    := -std=c11 -D_POSIX_C_SOURCE=200809L
 WARN    := -Wall -Wextra
 OPT     ?= -O2 -g
-LDLIBS  := -lz -lm
+LDLIBS  := -lgmsh -lgsl -lgslcblas -lz -lm
 
 ifeq ($(SANITIZE),1)
   B      := build/asan

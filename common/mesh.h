@@ -20,6 +20,12 @@
 **                   x N(...); y N(...); z N(...);" point coordinates per axis)
 **   cellParent      labelList: each cell's parent Cartesian cell
 **                   i + nx*(j + ny*k), or -1 (absent file = no parents).
+**   boundaryNormal  vectorField, one per boundary face (in face order,
+**                   starting at face ninternal): the exact outward unit
+**                   normal of the geometry at the face centre (cutCells,
+**                   voronoiGrid), which slip walls need.
+**   mergeMap        labelList, one per cell of the grid before merging:
+**                   the merged cell it became (mergeCells).
 ** Stream form ("-" as path, for pipelines): the same files one after the
 ** other, each preceded by a line "@file <name> <nbytes>\n", ended by a line
 ** "@end\n"; see doc/file-formats.md.
@@ -56,9 +62,13 @@ typedef struct Mesh {
     int *neighbour;    /* ninternal */
     Patch *patches;
 
-    /* extras (may be absent: cart.n[0] == 0, cell_parent NULL) */
+    /* extras (may be absent: cart.n[0] == 0, cell_parent, wall_normal,
+       merge_map NULL) */
     CartGrid cart;
     int *cell_parent;  /* ncells */
+    double *wall_normal;  /* 3*(nfaces - ninternal), or NULL */
+    int *merge_map;    /* nmerge_old entries, or NULL */
+    int nmerge_old;
 
     /* geometry, filled by mesh_geometry */
     double *face_area;    /* 3*nfaces, area vectors Sf */

@@ -1,0 +1,68 @@
+/*
+** merge.h: merging of small cut cells (spec granular-model.md §2.5,
+** thesis §3.3).
+**
+** A slave is a cell with V <= M_V V_cart, where V_cart is the volume of
+** its Cartesian parent (cell_parent, cart).  Its master is a face
+** neighbour chosen by the Cartesian grid normal criterion (§3.3.2.1):
+** n_S is the area-weighted inner normal of the slave's immersed boundary
+** faces (boundary faces that do not lie on a plane of its parent
+** Cartesian cell), the merge axis is j = argmax_i |n_i| (Approach 3, the
+** default) or argmax_i |n_i h_i| (Approach 2), and the master is the
+** neighbour across the slave's face(s) on the parent's side in direction
+** sign(n_j).  Fallbacks [GAP in the thesis; ours, doc/theory.md]: the other
+** axes in descending |n_i| (or |n_i h_i|), each in direction sign(n_i);
+** among candidates a non-slave is preferred over a slave; a slave may
+** take a slave (a chain).  Clusters are then re-examined: a cluster whose
+** volume is still below M_V times the Cartesian volume of its largest
+** member is treated as one slave with the cluster's immersed faces, and
+** merged again, until every cluster meets the bound or has no neighbour
+** left (at most max_iter rounds); such cells are reported with a reason.
+**
+** The merged cell is the union polyhedron: the faces shared inside a
+** cluster are removed, all other faces are kept unchanged (eq. 4.59),
+** its cell_parent is its largest member's, and mesh_geometry gives the
+** cluster's volume V_M + V_S and centroid.  Total volume is unchanged.
+*/
+#ifndef KIESEL_MERGE_H
+#define KIESEL_MERGE_H
+
+#include "err.h"
+#include "mesh.h"
+
+enum { MERGE_NORMAL = 0, MERGE_NORMAL_H = 1 };   /* |n_i|, |n_i h_i| */
+enum { MERGE_OK = 0, MERGE_NO_NEIGHBOUR, MERGE_ITER_LIMIT };
+
+typedef struct MergeOpts {
+    double threshold;   /* M_V, default 0.5 */
+    int criterion;      /* MERGE_NORMAL (default) or MERGE_NORMAL_H */
+    int max_iter;       /* default 10 */
+} MergeOpts;
+
+typedef struct MergeStats {
+    int ncells_in, ncells_out;
+    int nslaves;              /* cells below the bound before merging */
+    int nclusters;            /* output cells made of more than one cell */
+    int niter;
+    double ratio_min_before;  /* min V / V_cart over cells */
+    double ratio_min_after;   /* min V / V_cart(largest member) */
+    int ratio_min_cell;       /* output cell of ratio_min_after */
+    double aspect_max_before, aspect_max_after;   /* quality.h's measure */
+    double vol_before, vol_after;
+    int nunresolved;          /* output cells still below the bound */
+    int *unresolved;          /* their output cell numbers */
+    int *reason;              /* MERGE_* for each */
+} MergeStats;
+
+void merge_opts_default(MergeOpts *o);
+const char *merge_reason_name(int reason);
+
+/* Merges the small cells of in (cell_parent and cart required) into out
+   (need not be initialised).  out->merge_map gets in's cell count
+   entries: the output cell of each input cell.  wall_normal, when
+   present, follows the boundary faces.  Fills st (free with
+   merge_stats_free). */
+int merge_mesh(const Mesh *in, const MergeOpts *o, Mesh *out, MergeStats *st, Err *e);
+void merge_stats_free(MergeStats *st);
+
+#endif
