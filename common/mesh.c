@@ -58,6 +58,8 @@ void mesh_free(Mesh *m)
     free(m->patches);
     for (int k = 0; k < 3; k++) free(m->cart.x[k]);
     free(m->cell_parent);
+    free(m->wall_normal);
+    free(m->merge_map);
     free_geometry(m);
     free(m->cell_off);
     free(m->cell_faces);

@@ -38,6 +38,7 @@
 ** it is text either way, and OpenFOAM reads both.  Patches with groups
 ** NULL get OpenFOAM's default inGroups (1(wall), 1(empty), ...), and the
 ** reader turns that default back into NULL.  Extras that the mesh lacks
+** (cartesianGrid, cellParent, boundaryNormal, mergeMap)
 ** are removed from the directory, so a stale cellParent from an earlier
 ** mesh can never be read with a new one.
 */
@@ -48,6 +49,7 @@
 #include "mesh.h"
 
 #include <errno.h>
+#include <math.h>
 #include <limits.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -55,10 +57,13 @@
 #include <string.h>
 #include <unistd.h>
 
-enum { F_POINTS, F_FACES, F_OWNER, F_NEIGHBOUR, F_BOUNDARY, F_CART, F_PARENT, NFILES };
+enum { F_POINTS, F_FACES, F_OWNER, F_NEIGHBOUR, F_BOUNDARY, F_CART, F_PARENT, F_BNORMAL, F_MERGEMAP, NFILES };
+
+#define IS_EXTRA(w) ((w) >= F_CART)
 
 static const char *const file_names[NFILES] = {"points",   "faces",         "owner",     "neighbour",
-                                               "boundary", "cartesianGrid", "cellParent"};
+                                               "boundary", "cartesianGrid", "cellParent",
+                                               "boundaryNormal", "mergeMap"};
 
 /* ---- writing ---- */
 
@@ -140,6 +145,8 @@ static int has_file(const Mesh *m, int which)
 {
     if (which == F_CART) return m->cart.n[0] > 0;
     if (which == F_PARENT) return m->cell_parent != NULL;
+    if (which == F_BNORMAL) return m->wall_normal != NULL;
+    if (which == F_MERGEMAP) return m->merge_map != NULL;
     return 1;
 }
 
@@ -156,6 +163,8 @@ static size_t file_size_hint(const Mesh *m, int which, int binary)
     case F_OWNER: sz = nf * (binary ? 4 : 10); break;
     case F_NEIGHBOUR: sz = ni * (binary ? 4 : 10); break;
     case F_PARENT: sz = (size_t)m->ncells * (binary ? 4 : 10); break;
+    case F_BNORMAL: sz = (nf - ni) * (binary ? 24 : 72); break;
+    case F_MERGEMAP: sz = (size_t)m->nmerge_old * (binary ? 4 : 10); break;
     default: break;
     }
     return sz + 4096;
@@ -209,7 +218,8 @@ static void put_labels(Buf *b, Holes *h, const int *v, size_t n, int bin)
 static void mesh_file(const Mesh *m, int which, int binary, Buf *b, Holes *h)
 {
     static const char *const cls[NFILES] = {"vectorField", "faceList",   "labelList", "labelList",
-                                            "polyBoundaryMesh", "dictionary", "labelList"};
+                                            "polyBoundaryMesh", "dictionary", "labelList",
+                                            "vectorField", "labelList"};
     char note[160];
     snprintf(note, sizeof note, "nPoints:%d  nCells:%d  nFaces:%d  nInternalFaces:%d", m->npoints,
              m->ncells, m->nfaces, m->ninternal);
@@ -248,6 +258,13 @@ static void mesh_file(const Mesh *m, int which, int binary, Buf *b, Holes *h)
     case F_BOUNDARY: put_boundary(b, m); break;
     case F_CART: put_cart(b, &m->cart); break;
     case F_PARENT: put_labels(b, h, m->cell_parent, (size_t)m->ncells, bin); break;
+    case F_BNORMAL:
+        if (h)
+            put_hole(b, h, m->wall_normal, (size_t)(m->nfaces - m->ninternal), 3 * sizeof(double));
+        else
+            foam_put_scalars(b, m->wall_normal, (size_t)(m->nfaces - m->ninternal), 3, bin, 0);
+        break;
+    case F_MERGEMAP: put_labels(b, h, m->merge_map, (size_t)m->nmerge_old, bin); break;
     }
     /* OpenFOAM leaves two blank lines after a list, one after boundary */
     if (which != F_BOUNDARY && which != F_CART) buf_putc(b, '\n');
@@ -423,7 +440,7 @@ static int load_dir(Part *parts, const char *dir, Err *e)
 {
     for (int w = 0; w < NFILES; w++) {
         char *path = io_join(dir, file_names[w]);
-        int optional = w == F_CART || w == F_PARENT;
+        int optional = IS_EXTRA(w);
         int rc = 0;
         if (!optional || io_exists_gz(path)) {
             rc = io_map_file(path, &parts[w].file, &parts[w].name, e);
@@ -504,7 +521,7 @@ static int load_stream(Part *parts, const char *data, size_t n, const char *snam
         if (data[at] != ' ' && data[at] != '\n' && data[at] != '\t' && data[at] != '\r')
             return err_set(e, sname, line, "data after '@end' in mesh stream");
     for (int w = 0; w < NFILES; w++)
-        if (!parts[w].present && w != F_CART && w != F_PARENT)
+        if (!parts[w].present && !IS_EXTRA(w))
             return err_set(e, sname, 0, "mesh stream has no file '%s'", file_names[w]);
     return 0;
 }
@@ -813,6 +830,30 @@ static int read_parent(Mesh *m, const Dict *d, const char *name, Err *e)
     return read_labels(d, name, &m->cell_parent, &n, m->ncells, -1, hi, "one per cell", e);
 }
 
+static int read_bnormal(Mesh *m, const Dict *d, const char *name, Err *e)
+{
+    DictNode *const *v;
+    size_t nv, n;
+    if (body(d, name, &v, &nv, e)) return -1;
+    if (nv != 1) return err_set(e, name, list_line(v), "expected one list of vectors, found %zu values", nv);
+    if (dict_node_take_scalars(v[0], 3, &m->wall_normal, &n, e)) return -1;
+    if (n != (size_t)(m->nfaces - m->ninternal))
+        return err_set(e, name, list_line(v), "%zu normals for %d boundary faces", n, m->nfaces - m->ninternal);
+    for (size_t i = 0; i < 3 * n; i++)
+        if (!isfinite(m->wall_normal[i])) return err_set(e, name, list_line(v), "normal %zu is not finite", i / 3);
+    return 0;
+}
+
+/* The map's cells before merging are not known here; every entry must
+   name a cell of this mesh. */
+static int read_mergemap(Mesh *m, const Dict *d, const char *name, Err *e)
+{
+    size_t n;
+    if (read_labels(d, name, &m->merge_map, &n, -1, 0, m->ncells - 1, "", e)) return -1;
+    m->nmerge_old = (int)n;
+    return 0;
+}
+
 static int build_mesh(Mesh *m, Part *parts, Err *e)
 {
     Dict *d[NFILES] = {0};
@@ -829,6 +870,8 @@ static int build_mesh(Mesh *m, Part *parts, Err *e)
     if (!rc) rc = read_boundary(m, d[F_BOUNDARY], parts[F_BOUNDARY].name, e);
     if (!rc && d[F_CART]) rc = read_cart(m, d[F_CART], parts[F_CART].name, e);
     if (!rc && d[F_PARENT]) rc = read_parent(m, d[F_PARENT], parts[F_PARENT].name, e);
+    if (!rc && d[F_BNORMAL]) rc = read_bnormal(m, d[F_BNORMAL], parts[F_BNORMAL].name, e);
+    if (!rc && d[F_MERGEMAP]) rc = read_mergemap(m, d[F_MERGEMAP], parts[F_MERGEMAP].name, e);
     for (int w = 0; w < NFILES; w++)
         if (d[w]) dict_free(d[w]);
     return rc;
