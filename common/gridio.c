@@ -1,0 +1,69 @@
+/*
+** gridio.c: output side of the grid tools (gridio.h).
+*/
+#include "gridio.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "dict.h"
+#include "io.h"
+#include "mem.h"
+
+int gridio_control_format(const char *case_dir, MeshWriteOpts *w, Err *e)
+{
+    static const char *const fmts[] = {"ascii", "binary", NULL};
+    char *path = io_join(case_dir ? case_dir : ".", "system/controlDict");
+    int rc = 0;
+    if (io_exists(path)) {
+        Dict *d = dict_read(path, e);
+        int bin = 0, gz = 0;
+        if (!d || dict_choice_or(d, "writeFormat", fmts, 0, &bin, e) ||
+            dict_switch_or(d, "writeCompression", 0, &gz, e)) {
+            rc = -1;
+        } else {
+            w->binary = bin;
+            w->gzip = gz;
+        }
+        dict_free(d);
+    }
+    free(path);
+    return rc;
+}
+
+int gridio_write(const Mesh *m, const char *dir, const MeshWriteOpts *w, Err *e)
+{
+    if (!strcmp(dir, "-")) return mesh_write(m, "-", w, e);
+    size_t l = strlen(dir) + 32;
+    char *tmp = mem_alloc(l), *parent = mem_strdup(dir);
+    snprintf(tmp, l, "%s.tmp%ld", dir, (long)getpid());
+    char *slash = strrchr(parent, '/');
+    int rc = 0;
+    if (slash && slash != parent) {
+        *slash = 0;
+        rc = io_mkdir_p(parent, e);
+    }
+    io_rm_rf(tmp, NULL);
+    if (!rc) rc = mesh_write(m, tmp, w, e);
+    if (!rc) rc = io_commit_dir(tmp, dir, e);
+    if (rc) io_rm_rf(tmp, NULL);
+    free(tmp);
+    free(parent);
+    return rc;
+}
+
+void gridio_print_info(FILE *f, const Mesh *m)
+{
+    double lo[3], hi[3];
+    mesh_bounds(m, lo, hi);
+    fprintf(f, "----------------\nMesh Information\n----------------\n");
+    fprintf(f, "  boundingBox: (%g %g %g) (%g %g %g)\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    fprintf(f, "  nPoints: %d\n  nCells: %d\n  nFaces: %d\n  nInternalFaces: %d\n", m->npoints,
+            m->ncells, m->nfaces, m->ninternal);
+    fprintf(f, "----------------\nPatches\n----------------\n");
+    for (int p = 0; p < m->npatches; p++)
+        fprintf(f, "  patch %d (start: %d size: %d) name: %s\n", p, m->patches[p].start,
+                m->patches[p].size, m->patches[p].name);
+    fprintf(f, "\n");
+}
