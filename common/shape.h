@@ -41,10 +41,9 @@
 **     outside.  Callers that need a tolerance (the cutter) apply it to the
 **     crossings, not to the classification.
 **   - shape_level is negative inside, positive outside, zero on the
-**     surface; it equals the signed distance for the half-space, sphere
-**     and infinite cylinder and is within a factor of 2 of it near the
-**     surface for the other kinds (good for choosing the nearest surface,
-**     not for measuring).
+**     surface; it is the exact signed distance to the surface for every
+**     kind (so |level(x)| = |x - shape_closest(x)|, and shape_crossings
+**     uses it to skip segments shorter than an end's distance).
 */
 #ifndef KIESEL_SHAPE_H
 #define KIESEL_SHAPE_H
@@ -67,6 +66,8 @@ typedef struct Shape {
     double lo, hi;     /* polygon: extent along axis */
     int npoly;         /* polygon vertices */
     double *poly;      /* 2*npoly, owned (mem_alloc); NULL for other kinds */
+    char msg[160];     /* shape_check's message, kept here so that it may
+                          quote the offending values without global state */
 } Shape;
 
 /* Name "halfSpace", "box", "sphere", "cylinder", "cone", "torus",
@@ -97,8 +98,13 @@ int shape_crossings(const Shape *s, const double a[3], const double b[3], double
 
 /* Outward unit normal of the surface at the surface point nearest to x
    (for x on the surface: the exact normal there; on an edge or corner of
-   a box, cone or polygon: the normal of the nearest face, ties broken by
-   the first face in a fixed order). */
+   a box, cylinder, cone or polygon: the normal of the nearest face; faces
+   equally near, e.g. both faces at an edge nearest to an outside point,
+   are told apart by x's signed distance to their planes (largest for x
+   outside, smallest for x inside: the normal best aligned with the way
+   from the surface to x), then by the first face in a fixed order: box
+   -x +x -y +y -z +z; cylinder and cone side, end at p, end at q; polygon
+   walls by edge, then the lo and hi caps). */
 void shape_normal(const Shape *s, const double x[3], double n[3]);
 
 /* Surface point nearest to x (exact for half-space, box, sphere,
