@@ -13,6 +13,8 @@
 #ifndef KIESEL_STL_H
 #define KIESEL_STL_H
 
+#include <stddef.h>
+
 #include "err.h"
 #include "trisurf.h"
 

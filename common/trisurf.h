@@ -15,12 +15,19 @@
 ** edge's two endpoints in a canonical order (lower point index first) and
 ** the sign negated for the triangle that traverses it the other way, so
 ** two triangles sharing an edge always get opposite answers from the same
-** floating-point value.  Zero values are broken by a fixed symbolic
-** perturbation of the query line (simulation of simplicity: the line is
-** moved by (eps, eps^2) in the projection plane).  The result: a line
-** through an edge or vertex hits exactly one triangle of the fan around
-** it, so hit counts have the right parity and the surface is watertight
-** for every query (Woop, Benthin and Wald 2013 use the same argument).
+** floating-point value; signs are exact (floating-point filter, exact
+** expansion arithmetic when it is inconclusive).  Zero values are broken
+** by a fixed symbolic perturbation (simulation of simplicity): every
+** query point is moved by delta = (e_x, e_y, e_z), e_x >> e_y >> e_z > 0,
+** which moves an axis line by (eps, eps^2) in its projection plane (axes
+** in increasing order).  The result: a line through an edge or vertex hits
+** exactly one triangle of the fan around it, so hit counts have the right
+** parity and the surface is watertight for every query (Woop, Benthin and
+** Wald 2013 use the same argument); and a point exactly on the surface is
+** classified as the point moved by delta (inside where the first non-zero
+** component of the face's outward normal is negative: the unit cube is
+** the box [0,1)^3), identically by every query on every axis, so the
+** crossings of a segment always match the inside states of its ends.
 **
 ** Acceleration: a uniform bucket grid per axis over the projection of the
 ** triangles onto the plane normal to that axis (built by trisurf_prepare),
@@ -66,7 +73,8 @@ void trisurf_free(TriSurf *s);
 
 /* Builds a surface from a triangle soup: xyz[9*i..9*i+8] are the three
    corners of triangle i.  Corners at bit-identical positions become one
-   point (a hash on the coordinates).  tag may be NULL. */
+   point (a hash on the coordinates).  tag may be NULL.  s need not be
+   initialised; it is overwritten. */
 void trisurf_from_soup(TriSurf *s, const double *xyz, int ntris, const int *tag);
 
 /* Edge-based topology check; never fails (fills t). */
@@ -88,15 +96,16 @@ void trisurf_transform(TriSurf *s, const double A[9], const double b[3]);
    the surface is final and before any query below. */
 int trisurf_prepare(TriSurf *s, Err *e);
 
-/* Inside test: winding number of the surface about x, counted along the
-   ray from x in +x direction with the perturbation rule above; a point on
-   the surface counts as outside. */
+/* Inside test: winding number of the surface about x (non-zero: inside),
+   counted along the ray from x in +x direction with the perturbation rule
+   above; a point on the surface is the point moved by delta (see above). */
 int trisurf_inside(const TriSurf *s, const double x[3]);
 
 /* Classifies the n points p + (c[i] - p[axis]) e_axis (c ascending) at
    once by sweeping the line through p along `axis`: in[i] = 1 inside,
-   0 outside.  Same answers as trisurf_inside up to the choice of ray
-   axis (identical for points off the surface). */
+   0 outside.  For a closed surface, the same answers as trisurf_inside
+   for every point, on the surface too (exact predicates, one
+   perturbation); c must be non-decreasing. */
 void trisurf_classify_line(const TriSurf *s, int axis, const double p[3],
                            const double *c, int n, char *in);
 
@@ -104,10 +113,13 @@ void trisurf_classify_line(const TriSurf *s, int axis, const double p[3],
    ascending, and the triangle hit (tri may be NULL).  Segments along an
    axis (a and b differ in one coordinate only) use the robust projected
    test above; other segments use orientation predicates with the same
-   per-edge consistency.  The crossing point is the exact intersection of
-   the segment with the triangle's plane, computed from the barycentric
-   edge values.  Returns the number found (may exceed max; only max
-   written). */
+   per-edge consistency.  The crossing point is the intersection of the
+   segment with the triangle's plane, computed from the barycentric edge
+   values (exact for a face normal to an axis segment and at vertices).
+   A crossing exactly at an end is reported when the segment moved by
+   delta still crosses there, so the count's parity is always
+   inside(a) != inside(b).  Returns the number found (may exceed max; only
+   max written). */
 int trisurf_crossings(const TriSurf *s, const double a[3], const double b[3],
                       double *t, int *tri, int max);
 
