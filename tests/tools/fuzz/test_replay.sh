@@ -12,7 +12,7 @@ for h in "$top"/tests/fuzz/fuzz_*.c; do
     name=$(basename "$h" .c); name=${name#fuzz_}
     exe=./replay_$name
     if ! gcc -std=c11 -D_POSIX_C_SOURCE=200809L -O1 -g $san -I"$top/common" \
-        "$h" "$top/tests/fuzz/replay_main.c" "$lib" -lz -lm -o "$exe" 2> build_$name.log; then
+        "$h" "$top/tests/fuzz/replay_main.c" "$lib" -lgmsh -lgsl -lgslcblas -lz -lm -o "$exe" 2> build_$name.log; then
         echo "FAIL replay_$name: harness does not build:"; sed 's/^/  /' build_$name.log | head -5
         continue
     fi
