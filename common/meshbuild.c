@@ -23,7 +23,8 @@
 ** Invariant of the builder between calls: face f has points
 ** face_idx[face_off[f]..face_off[f+1]-1], owner[f] >= 0 unless the caller
 ** gave a negative cell (reported by finish), and other[f] is either a cell
-** > owner[f] or -1 - patch.
+** > owner[f], or -1 - patch, or NO_PATCH for a boundary face given with a
+** negative patch (reported by finish).
 */
 #include "meshbuild.h"
 #include "mem.h"

@@ -1,0 +1,1243 @@
+/*
+** cut.c: cut cells of a block grid by a Geometry (cut.h, spec
+** granular-model.md §2.2, thesis §3.2.2).
+**
+** Data.  Grid vertex (i,j,k) is v = i + (nx+1)*(j + (ny+1)*k); the grid
+** edge from v along axis a is the key 3v + a.  Per vertex one byte (fluid
+** or solid) and one lazily assigned mesh point; per Cartesian cell its new
+** cell number.  Cut points exist only on mixed edges (fluid and solid
+** end), so they live in an open-addressing hash table keyed by the edge:
+** its size follows the boundary, not the grid.
+**
+** Crossings come from one geometry_crossings call per grid line (the whole
+** line, not each edge): 3 (n+1)^2 calls instead of 3 (n+1)^3, and every
+** crossing is seen, so thin features (crossings inside an edge whose ends
+** agree) are counted.  nodd counts mixed edges with two or more
+** crossings.  A crossing becomes a coordinate along the line; the other
+** two coordinates of a cut point are the grid line's own, so cut points
+** on grid planes lie exactly on them.
+**
+** Snapping (cut.h step 3).  Vertices on the surface (to snap x the edge
+** length) are solid: a fluid vertex whose edge's cut point is that close
+** turns solid, and so does one that lies on the surface only along a
+** diagonal (a box's edge or corner on grid lines: no grid line through
+** the vertex crosses the surface), found by testing the point snap x the
+** way towards each solid corner of its cut cells.  Edges from a snapped
+** vertex to fluid vertices get their cut point on it, except an edge lying
+** in the surface (a grid line in a box face on a grid plane), whose real
+** crossing is found on copies of the edge moved across it (offset_cut).
+** Afterwards each fluid corner keeps a corner piece at least snap x (edge)
+** wide, so no face or cell has zero size.  Surfaces on grid planes are so
+** cut exactly where the fluid side is concave (flow round a box); a fluid
+** region's convex edges on grid lines (flow inside a grid-aligned box) are
+** chamfered, since their vertices are solid: make such walls box sides.
+**
+** Faces.  A grid face polygon is walked round its corners in the order
+** base, +u, +u+v, +v (normal +a, with u = a+1, v = a+2 cyclically),
+** emitting fluid corners and cut points (two diagonal fluid corners are
+** joined: a hexagon); consecutive repeats of a point (cut points snapped
+** onto one vertex) are dropped.  The same walk serves both cells of a
+** face and both cyclic sides of a box (the min side reverses it keeping
+** the first point, blockGrid's rule), so shared faces agree point for
+** point.  Sides joining two cut points, reversed, are the boundary's edges
+** in the cell: pairs running both ways (a zero-area spur where a snapped
+** point sits on a cell edge) cancel, and the rest chain into simple loops.
+** Every cut point enters and leaves the cell's grid faces equally often,
+** so every edge of a cell is used by exactly two of its faces in opposite
+** directions (closed cells, watertight boundary), whatever the loops'
+** shape and however they are triangulated.
+**
+** Boundary faces.  A planar loop is one polygon (exact for plane cuts);
+** any other is fanned about its centroid.  Cut cells need not be convex,
+** and checkMesh wants every face to face away from the cell centroid
+** (positive face pyramids): when a fan triangle would not, the loop is
+** triangulated by its own points instead, choosing by dynamic programming
+** the triangulation whose smallest pyramid on the resulting centroid is
+** largest.  The body-diagonal case gets a band of six triangles zipping
+** the two loops by angle about their axis, or the best of all 60 zips when
+** that one has a bad pyramid.
+**
+** Order and sizes.  Cells are numbered in Cartesian order; each adds its
+** faces towards its +x, +y, +z neighbours, so internal faces arrive
+** almost in OpenFOAM's order, and box-side faces follow in the grid's own
+** boundary-face order, which keeps cyclic pairs matched.  meshbuild keeps
+** the order of addition within a patch, so the k-th face added to a patch
+** is its k-th face: wall normals are stored in addition order and placed
+** without a face map.  Cell volumes are summed while the faces are made
+** (divergence theorem, tetrahedra of each face on the cell's centre: exact
+** for closed surfaces of planar polygons), so no geometry pass is needed.
+*/
+#include "cut.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geom.h"
+#include "mem.h"
+#include "meshbuild.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#define PLANAR_TOL 1e-12 /* loop planarity, relative to its size (cut.h) */
+#define SIDE_TOL   1e-9  /* box-side recognition, relative to the box */
+#define MAXP       16    /* points of one grid-face polygon (at most 8) */
+#define MAXS       64    /* boundary segments of one cell (at most 24) */
+
+typedef struct CutPt {
+    int64_t key;    /* 3 v + axis, -1: empty slot */
+    double s;       /* coordinate along the axis */
+    int leaf;       /* leaf crossed, -1: unknown */
+    int pt;         /* mesh point, -1 until used */
+    signed char at; /* -1: inside the edge; 0/1: on the lower/upper vertex */
+    char dead;      /* removed by snapping */
+} CutPt;
+
+typedef struct Poly {
+    int n;
+    int pt[MAXP];
+    int leaf[MAXP]; /* leaf of a cut point, -1 */
+    char cut[MAXP]; /* 1: a cut point, 0: a fluid corner */
+} Poly;
+
+typedef struct Seg {
+    int a, b, la, lb;
+} Seg;
+
+typedef struct WallFace {
+    int patch;
+    double n[3];
+} WallFace;
+
+typedef struct Ctx {
+    const Geometry *g;
+    int n[3], nv[3];
+    const double *x[3];
+    int64_t sv[3]; /* vertex strides */
+    int64_t sc[3]; /* cell strides */
+    char *cls;     /* per vertex: 1 fluid, 0 solid (2: snapping) */
+    int *vpt;      /* per vertex: mesh point or -1 */
+    int *cellid;   /* per Cartesian cell: new cell or -1 */
+    CutPt *tab;
+    size_t cap, cnt;
+    double snap;
+    int npatch_grid;
+    MeshBuild b;
+    WallFace *wall; /* boundary faces in order of addition */
+    size_t nwall, wall_cap;
+    double *cvol;         /* per new cell: its volume */
+    double vref[3], vacc; /* the cut cell being built: reference, volume */
+    CutStats *st;
+} Ctx;
+
+void cut_opts_default(CutOpts *o)
+{
+    o->snap = CUT_SNAP;
+}
+
+/* ---- the cut-point table ---- */
+
+static size_t slot_of(const Ctx *c, int64_t key)
+{
+    uint64_t h = (uint64_t)key * 0x9E3779B97F4A7C15ull;
+    return (size_t)(h >> 17) & (c->cap - 1);
+}
+
+static CutPt *cut_find(const Ctx *c, int64_t key)
+{
+    for (size_t i = slot_of(c, key);; i = (i + 1) & (c->cap - 1)) {
+        if (c->tab[i].key == key) return c->tab[i].dead ? NULL : &c->tab[i];
+        if (c->tab[i].key < 0) return NULL;
+    }
+}
+
+static void tab_alloc(Ctx *c, size_t cap)
+{
+    c->cap = cap;
+    c->tab = mem_alloc(cap * sizeof *c->tab);
+    for (size_t i = 0; i < cap; i++) c->tab[i].key = -1;
+}
+
+static CutPt *cut_insert(Ctx *c, int64_t key)
+{
+    if (2 * (c->cnt + 1) > c->cap) {
+        CutPt *old = c->tab;
+        size_t oc = c->cap;
+        tab_alloc(c, 2 * oc);
+        for (size_t i = 0; i < oc; i++)
+            if (old[i].key >= 0) {
+                size_t j = slot_of(c, old[i].key);
+                while (c->tab[j].key >= 0) j = (j + 1) & (c->cap - 1);
+                c->tab[j] = old[i];
+            }
+        free(old);
+    }
+    size_t i = slot_of(c, key);
+    while (c->tab[i].key >= 0 && c->tab[i].key != key) i = (i + 1) & (c->cap - 1);
+    if (c->tab[i].key < 0) c->cnt++;
+    c->tab[i] = (CutPt){key, 0, -1, -1, -1, 0};
+    return &c->tab[i];
+}
+
+/* ---- vertices ---- */
+
+static void vertex_ijk(const Ctx *c, int64_t v, int ijk[3])
+{
+    ijk[0] = (int)(v % c->nv[0]);
+    ijk[1] = (int)((v / c->nv[0]) % c->nv[1]);
+    ijk[2] = (int)(v / ((int64_t)c->nv[0] * c->nv[1]));
+}
+
+static int vertex_point(Ctx *c, int64_t v)
+{
+    if (c->vpt[v] < 0) {
+        int ijk[3];
+        vertex_ijk(c, v, ijk);
+        double x[3] = {c->x[0][ijk[0]], c->x[1][ijk[1]], c->x[2][ijk[2]]};
+        c->vpt[v] = meshbuild_point(&c->b, x);
+    }
+    return c->vpt[v];
+}
+
+static int cut_point(Ctx *c, CutPt *p)
+{
+    int64_t v = p->key / 3;
+    int a = (int)(p->key % 3);
+    if (p->at >= 0) return vertex_point(c, v + (p->at ? c->sv[a] : 0));
+    if (p->pt < 0) {
+        int ijk[3];
+        vertex_ijk(c, v, ijk);
+        double x[3] = {c->x[0][ijk[0]], c->x[1][ijk[1]], c->x[2][ijk[2]]};
+        x[a] = p->s;
+        p->pt = meshbuild_point(&c->b, x);
+    }
+    return p->pt;
+}
+
+/* Step 1: one classify_line sweep per x-line. */
+static void classify(Ctx *c)
+{
+    for (int k = 0; k < c->nv[2]; k++)
+        for (int j = 0; j < c->nv[1]; j++) {
+            double p[3] = {c->x[0][0], c->x[1][j], c->x[2][k]};
+            char *out = c->cls + (int64_t)c->nv[0] * (j + (int64_t)c->nv[1] * k);
+            geometry_classify_line(c->g, 0, p, c->x[0], c->nv[0], out);
+            for (int i = 0; i < c->nv[0]; i++) out[i] = out[i] != 0;
+        }
+}
+
+/* ---- step 2: cut points from the crossings of whole grid lines ---- */
+
+typedef struct Line {
+    GeoCross *cr;
+    int ncr, cap;
+    double *s; /* crossing coordinates */
+} Line;
+
+static void line_crossings(Ctx *c, Line *l, int a, const double p[3])
+{
+    double pa[3] = {p[0], p[1], p[2]}, pb[3] = {p[0], p[1], p[2]};
+    const double *x = c->x[a];
+    int n = c->n[a];
+    pa[a] = x[0];
+    pb[a] = x[n];
+    int k = geometry_crossings(c->g, pa, pb, l->cr, l->cap);
+    if (k > l->cap) {
+        free(l->cr);
+        free(l->s);
+        l->cap = k;
+        l->cr = mem_alloc(sizeof *l->cr * (size_t)k);
+        l->s = mem_alloc(sizeof *l->s * (size_t)k);
+        k = geometry_crossings(c->g, pa, pb, l->cr, l->cap);
+        if (k > l->cap) k = l->cap;
+    }
+    l->ncr = k;
+    for (int i = 0; i < k; i++) {
+        double t = l->cr[i].t;
+        l->s[i] = t >= 1 ? x[n] : t <= 0 ? x[0] : x[0] + t * (x[n] - x[0]);
+    }
+}
+
+/* The crossing nearest the fluid end on the copy of edge (p0, along a to
+   xhi) moved by off along axis b, when the copy's ends are fluid and
+   solid like the edge's. */
+static int moved_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, int b, double off,
+                     double *s, int *leaf)
+{
+    double q0[3] = {p0[0], p0[1], p0[2]}, q1[3];
+    q0[b] += off;
+    memcpy(q1, q0, sizeof q1);
+    q1[a] = xhi;
+    if (geometry_fluid(c->g, q0) != fluid_lo || geometry_fluid(c->g, q1) == fluid_lo) return 0;
+    GeoCross cr[8];
+    int k = geometry_crossings(c->g, q0, q1, cr, 8), found = 0;
+    double xf = fluid_lo ? p0[a] : xhi;
+    for (int r = 0; r < k && r < 8; r++) {
+        double x = p0[a] + cr[r].t * (xhi - p0[a]);
+        if (!found || fabs(x - xf) < fabs(*s - xf)) *s = x, *leaf = cr[r].leaf;
+        found = 1;
+    }
+    return found;
+}
+
+/* The boundary crossing on an edge that lies in the surface (a grid line
+   in a face of a box on a grid plane: its own crossings are not
+   transversal).  The edge from vertex v along a is moved by snap x (cell
+   width) and twice that in each of the four directions across it; copies
+   whose ends are fluid and solid like the edge's give crossings, and the
+   line through the two is extrapolated to no move at all: exact when the
+   surface is planar there, whether the crossing stays put (a face ending
+   at a side) or moves with the copy (a surface through the vertex).
+   Returns 0 when no copy crosses. */
+static int offset_cut(const Ctx *c, int a, int64_t v, int fluid_lo, double *s, int *leaf)
+{
+    int ijk[3], found = 0;
+    vertex_ijk(c, v, ijk);
+    double p0[3] = {c->x[0][ijk[0]], c->x[1][ijk[1]], c->x[2][ijk[2]]};
+    double xhi = c->x[a][ijk[a] + 1], xf = fluid_lo ? p0[a] : xhi;
+    for (int d = 0; d < 4; d++) {
+        int b = (a + 1 + d / 2) % 3, l1, l2;
+        int lo = ijk[b] < c->n[b] ? ijk[b] : ijk[b] - 1;
+        double h = c->x[b][lo + 1] - c->x[b][lo];
+        double off = (d & 1 ? -1 : 1) * c->snap * h, s1, s2;
+        if (!moved_cut(c, a, p0, xhi, fluid_lo, b, off, &s1, &l1)) continue;
+        if (moved_cut(c, a, p0, xhi, fluid_lo, b, 2 * off, &s2, &l2)) s1 = 2 * s1 - s2;
+        if (!found || fabs(s1 - xf) < fabs(*s - xf)) *s = s1, *leaf = l1;
+        found = 1;
+    }
+    return found;
+}
+
+/* The cut point of edge i..i+1 of the line (first crossing index *lo,
+   advanced past crossings left behind). */
+static void edge_cut(Ctx *c, const Line *l, int a, int i, int64_t va, int *lo)
+{
+    const double *x = c->x[a];
+    double h = x[i + 1] - x[i], tol = c->snap * h;
+    while (*lo < l->ncr && l->s[*lo] < x[i] - tol) (*lo)++;
+    int fa = c->cls[va], fb = c->cls[va + c->sv[a]];
+    if (fa == fb) {
+        for (int r = *lo; r < l->ncr && l->s[r] < x[i + 1] - tol; r++)
+            if (l->s[r] > x[i] + tol) {
+                c->st->nthin++;
+                break;
+            }
+        return;
+    }
+    double xf = fa ? x[i] : x[i + 1];
+    int best = -1, cnt = 0;
+    for (int r = *lo; r < l->ncr && l->s[r] <= x[i + 1] + tol; r++, cnt++)
+        if (best < 0 || fabs(l->s[r] - xf) < fabs(l->s[best] - xf)) best = r;
+    CutPt *p = cut_insert(c, 3 * va + a);
+    if (best < 0) {
+        double so;
+        int lf;
+        if (c->snap > 0 && offset_cut(c, a, va, fa, &so, &lf)) {
+            p->s = fmin(fmax(so, x[i]), x[i + 1]);
+            p->leaf = lf;
+            return;
+        }
+        c->st->ninconsistent++;
+        p->s = fa ? x[i + 1] : x[i];
+        return;
+    }
+    if (cnt >= 2) c->st->nodd++;
+    p->s = fmin(fmax(l->s[best], x[i]), x[i + 1]);
+    p->leaf = l->cr[best].leaf;
+}
+
+static void cut_lines(Ctx *c)
+{
+    Line l = {0};
+    l.cap = 64;
+    l.cr = mem_alloc(sizeof *l.cr * (size_t)l.cap);
+    l.s = mem_alloc(sizeof *l.s * (size_t)l.cap);
+    for (int a = 0; a < 3; a++) {
+        int u = (a + 1) % 3, w = (a + 2) % 3;
+        for (int iw = 0; iw < c->nv[w]; iw++)
+            for (int iu = 0; iu < c->nv[u]; iu++) {
+                double p[3];
+                p[u] = c->x[u][iu];
+                p[w] = c->x[w][iw];
+                p[a] = 0;
+                int64_t v0 = iu * c->sv[u] + iw * c->sv[w];
+                line_crossings(c, &l, a, p);
+                int lo = 0, any = l.ncr > 0;
+                for (int i = 0; i < c->n[a] && !any; i++)
+                    any = c->cls[v0 + i * c->sv[a]] != c->cls[v0 + (i + 1) * c->sv[a]];
+                if (!any) continue;
+                for (int i = 0; i < c->n[a]; i++) edge_cut(c, &l, a, i, v0 + i * c->sv[a], &lo);
+            }
+    }
+    free(l.cr);
+    free(l.s);
+}
+
+/* ---- step 3: snapping ---- */
+
+static double edge_len(const Ctx *c, const CutPt *p, double *xlo, double *xhi)
+{
+    int64_t v = p->key / 3;
+    int a = (int)(p->key % 3), ijk[3];
+    vertex_ijk(c, v, ijk);
+    *xlo = c->x[a][ijk[a]];
+    *xhi = c->x[a][ijk[a] + 1];
+    return *xhi - *xlo;
+}
+
+static int64_t cell_corner(const Ctx *c, int64_t v0, int q)
+{
+    return v0 + (q & 1) * c->sv[0] + ((q >> 1) & 1) * c->sv[1] + (q >> 2) * c->sv[2];
+}
+
+/* Fluid corners of cut cells that lie on the surface seen only along a
+   cell or face diagonal (a box edge or corner on grid lines: no grid
+   line through the vertex crosses the surface) turn solid too: the point
+   snap x (diagonal) towards each solid corner of the cell is tested. */
+static size_t snap_diagonal(Ctx *c, int64_t **list, size_t nl, size_t *lcap)
+{
+    for (int k = 0; k < c->n[2]; k++)
+        for (int j = 0; j < c->n[1]; j++)
+            for (int i = 0; i < c->n[0]; i++) {
+                int64_t v0 = i + c->nv[0] * (j + (int64_t)c->nv[1] * k), cv[8];
+                int nf = 0, ns = 0;
+                for (int q = 0; q < 8; q++) {
+                    cv[q] = cell_corner(c, v0, q);
+                    nf += c->cls[cv[q]] == 1;
+                    ns += c->cls[cv[q]] == 0;
+                }
+                if (!nf || !ns) continue;
+                for (int q = 0; q < 8; q++) {
+                    if (c->cls[cv[q]] != 1) continue;
+                    const int ijk[3] = {i + (q & 1), j + ((q >> 1) & 1), k + (q >> 2)};
+                    for (int r = 0; r < 8 && c->cls[cv[q]] == 1; r++) {
+                        if (c->cls[cv[r]] != 0) continue;
+                        const int rk[3] = {i + (r & 1), j + ((r >> 1) & 1), k + (r >> 2)};
+                        double x[3];
+                        for (int a = 0; a < 3; a++)
+                            x[a] = c->x[a][ijk[a]] + c->snap * (c->x[a][rk[a]] - c->x[a][ijk[a]]);
+                        if (geometry_fluid(c->g, x)) continue;
+                        c->cls[cv[q]] = 2;
+                        mem_grow((void **)list, lcap, nl + 1, sizeof **list);
+                        (*list)[nl++] = cv[q];
+                    }
+                }
+            }
+    return nl;
+}
+
+static void snap(Ctx *c)
+{
+    int64_t *list = NULL;
+    size_t nl = 0, lcap = 0;
+    for (size_t i = 0; i < c->cap; i++) {
+        CutPt *p = &c->tab[i];
+        if (p->key < 0) continue;
+        double xlo, xhi, h = edge_len(c, p, &xlo, &xhi);
+        int64_t v = p->key / 3, w = v + c->sv[p->key % 3];
+        int64_t f = c->cls[v] ? v : w;
+        if (fabs(p->s - (f == v ? xlo : xhi)) < c->snap * h && c->cls[f] == 1) {
+            c->cls[f] = 2;
+            mem_grow((void **)&list, &lcap, nl + 1, sizeof *list);
+            list[nl++] = f;
+        }
+    }
+    if (c->snap > 0) nl = snap_diagonal(c, &list, nl, &lcap);
+    for (size_t i = 0; i < c->cap; i++) {
+        CutPt *p = &c->tab[i];
+        if (p->key < 0) continue;
+        int64_t v = p->key / 3, w = v + c->sv[p->key % 3];
+        if (c->cls[v] == 2 || c->cls[w] == 2) p->dead = 1;
+    }
+    for (size_t k = 0; k < nl; k++) c->cls[list[k]] = 0;
+    c->st->nsnap += (int)nl;
+    for (size_t k = 0; k < nl; k++) {
+        int ijk[3];
+        vertex_ijk(c, list[k], ijk);
+        for (int a = 0; a < 3; a++)
+            for (int dir = -1; dir <= 1; dir += 2) {
+                int ia = ijk[a] + dir;
+                if (ia < 0 || ia >= c->nv[a]) continue;
+                int64_t w = list[k] + dir * c->sv[a];
+                if (c->cls[w] != 1) continue;
+                int64_t lower = dir > 0 ? list[k] : w;
+                CutPt *p = cut_insert(c, 3 * lower + a);
+                p->at = dir > 0 ? 0 : 1;
+                p->s = c->x[a][ijk[a]];
+                double so, h = fabs(c->x[a][ia] - c->x[a][ijk[a]]);
+                int lf;
+                if (offset_cut(c, a, lower, dir < 0, &so, &lf) && fabs(so - p->s) >= c->snap * h) {
+                    p->at = -1;
+                    p->s = fmin(fmax(so, fmin(c->x[a][ia], p->s)), fmax(c->x[a][ia], p->s));
+                    p->leaf = lf;
+                }
+            }
+    }
+    free(list);
+    for (size_t i = 0; i < c->cap; i++) {
+        CutPt *p = &c->tab[i];
+        if (p->key < 0 || p->dead || p->at >= 0) continue;
+        double xlo, xhi, h = edge_len(c, p, &xlo, &xhi);
+        int64_t v = p->key / 3;
+        double xs = c->cls[v] ? xhi : xlo;
+        if (fabs(p->s - xs) < c->snap * h) {
+            p->at = c->cls[v] ? 1 : 0;
+            p->s = xs;
+            c->st->nsnap++;
+        }
+    }
+}
+
+/* ---- step 4: grid faces ---- */
+
+static void poly_add(Poly *p, int pt, int leaf, int cut)
+{
+    if (p->n > 0 && p->pt[p->n - 1] == pt) return;
+    p->pt[p->n] = pt;
+    p->leaf[p->n] = leaf;
+    p->cut[p->n++] = (char)cut;
+}
+
+/* The polygon of the grid face normal to a with base vertex v0, normal +a
+   (empty when no corner is fluid). */
+static void face_poly(Ctx *c, int a, int64_t v0, Poly *p)
+{
+    int u = (a + 1) % 3, w = (a + 2) % 3;
+    int64_t cv[4] = {v0, v0 + c->sv[u], v0 + c->sv[u] + c->sv[w], v0 + c->sv[w]};
+    /* edge q joins corner q to q+1; its axis and lower vertex */
+    const int eax[4] = {u, w, u, w};
+    const int64_t elo[4] = {cv[0], cv[1], cv[3], cv[0]};
+    p->n = 0;
+    if (!c->cls[cv[0]] && !c->cls[cv[1]] && !c->cls[cv[2]] && !c->cls[cv[3]]) return;
+    for (int q = 0; q < 4; q++) {
+        if (c->cls[cv[q]]) poly_add(p, vertex_point(c, cv[q]), -1, 0);
+        if (c->cls[cv[q]] != c->cls[cv[(q + 1) & 3]]) {
+            CutPt *e = cut_find(c, 3 * elo[q] + eax[q]);
+            if (e) poly_add(p, cut_point(c, e), e->leaf, 1);
+        }
+    }
+    while (p->n > 1 && p->pt[p->n - 1] == p->pt[0]) p->n--;
+}
+
+/* ---- step 5: boundary loops ---- */
+
+static const double *ptx(const Ctx *c, int pt)
+{
+    return c->b.points + 3 * (size_t)pt;
+}
+
+/* Adds the boundary segments of polygon p of a cell; out = 1 when p's
+   normal points out of the cell. */
+static void poly_segments(const Poly *p, int out, Seg *s, int *ns)
+{
+    for (int i = 0; i < p->n; i++) {
+        int j = (i + 1) % p->n;
+        if (!p->cut[i] || !p->cut[j] || p->pt[i] == p->pt[j] || *ns >= MAXS) continue;
+        s[(*ns)++] = out ? (Seg){p->pt[j], p->pt[i], p->leaf[j], p->leaf[i]}
+                         : (Seg){p->pt[i], p->pt[j], p->leaf[i], p->leaf[j]};
+    }
+}
+
+/* Cancels segment pairs running both ways (zero-area spurs). */
+static int cancel_spurs(Seg *s, int ns)
+{
+    for (int i = 0; i < ns; i++)
+        for (int j = i + 1; j < ns; j++)
+            if (s[i].a == s[j].b && s[i].b == s[j].a) {
+                s[j] = s[--ns];
+                s[i] = s[--ns];
+                i--;
+                break;
+            }
+    return ns;
+}
+
+typedef struct Loop {
+    int n;
+    int pt[MAXS], leaf[MAXS];
+} Loop;
+
+/* Chains the segments into simple loops: walking from a segment, a point
+   met a second time closes the loop from its first visit (so a pinch
+   point, where two loops touch, splits them).  Returns the loop count. */
+static int chain(const Seg *s, int ns, Loop *loops, int maxl)
+{
+    char used[MAXS] = {0};
+    int nl = 0;
+    for (int st = 0; st < ns; st++) {
+        if (used[st]) continue;
+        int path[MAXS + 1], pl[MAXS + 1], np = 0, r = st;
+        used[st] = 1;
+        path[np] = s[st].a, pl[np++] = s[st].la;
+        for (;;) {
+            int b = s[r].b, lb = s[r].lb, k = 0;
+            while (k < np && path[k] != b) k++;
+            if (k < np) {
+                if (nl < maxl) {
+                    Loop *L = &loops[nl++];
+                    L->n = np - k;
+                    memcpy(L->pt, path + k, sizeof(int) * (size_t)L->n);
+                    memcpy(L->leaf, pl + k, sizeof(int) * (size_t)L->n);
+                }
+                np = k;
+                if (np == 0) break;
+            }
+            path[np] = b, pl[np++] = lb;
+            r = -1;
+            for (int q = 0; q < ns && r < 0; q++)
+                if (!used[q] && s[q].a == b) r = q;
+            if (r < 0) break;
+            used[r] = 1;
+        }
+    }
+    return nl;
+}
+
+/* The leaf of a boundary face: its points' leaves when they agree, else
+   the leaf nearest to its centre. */
+static int face_leaf(const Ctx *c, const int *leaf, int n, const double ctr[3])
+{
+    int lf = -1;
+    for (int i = 0; i < n; i++) {
+        if (leaf[i] < 0) continue;
+        if (lf >= 0 && leaf[i] != lf) return geometry_nearest_leaf(c->g, ctr);
+        lf = leaf[i];
+    }
+    return lf >= 0 ? lf : geometry_nearest_leaf(c->g, ctr);
+}
+
+static void push_wall(Ctx *c, int patch, const double n[3])
+{
+    mem_grow((void **)&c->wall, &c->wall_cap, c->nwall + 1, sizeof *c->wall);
+    WallFace *w = &c->wall[c->nwall++];
+    w->patch = patch;
+    memcpy(w->n, n, sizeof w->n);
+}
+
+/* Adds the tetrahedra of the fan of polygon pt (about its first point;
+   rev: the polygon's normal points into the cell) on the cell's reference
+   point to the cell's volume: the divergence theorem, exact for any
+   closed surface of planar polygons. */
+static void poly_volume(Ctx *c, const int *pt, int n, int rev)
+{
+    for (int i = 1; i + 1 < n; i++) {
+        double u[3], w[3], z[3], x[3];
+        const double *a = ptx(c, pt[0]), *b = ptx(c, pt[rev ? i + 1 : i]), *d = ptx(c, pt[rev ? i : i + 1]);
+        for (int k = 0; k < 3; k++) {
+            u[k] = a[k] - c->vref[k];
+            w[k] = b[k] - c->vref[k];
+            z[k] = d[k] - c->vref[k];
+        }
+        geom_cross(w, z, x);
+        c->vacc += geom_dot(u, x) / 6;
+    }
+}
+
+/* An immersed boundary face of the cut cell being built. */
+static void add_wall(Ctx *c, const int *pt, const int *leaf, int n, int cell)
+{
+    double S[3], C[3], nv[3];
+    geom_face(c->b.points, pt, n, S, C);
+    int lf = face_leaf(c, leaf, n, C);
+    int patch = c->npatch_grid + c->g->leaves[lf].surface;
+    meshbuild_face(&c->b, pt, n, cell, -1, patch);
+    geometry_normal(c->g, lf, C, nv);
+    double ln = geom_norm(nv), la = geom_norm(S);
+    if (!(fabs(ln - 1) < 1e-6) && la > 0)
+        /* no usable surface normal (a flattened leaf whose nearest face is
+           parallel to the section plane): the face's own normal */
+        for (int k = 0; k < 3; k++) nv[k] = S[k] / la;
+    push_wall(c, patch, nv);
+    poly_volume(c, pt, n, 0);
+    c->st->area_boundary += geom_norm(S);
+    c->st->nboundary++;
+}
+
+static void loop_centroid(const Ctx *c, const Loop *L, double m[3])
+{
+    m[0] = m[1] = m[2] = 0;
+    for (int i = 0; i < L->n; i++)
+        for (int k = 0; k < 3; k++) m[k] += ptx(c, L->pt[i])[k];
+    for (int k = 0; k < 3; k++) m[k] /= L->n;
+}
+
+/* Newell normal (unnormalised) of a loop about m. */
+static void loop_normal(const Ctx *c, const Loop *L, const double m[3], double N[3])
+{
+    N[0] = N[1] = N[2] = 0;
+    for (int i = 0; i < L->n; i++) {
+        const double *p = ptx(c, L->pt[i]), *q = ptx(c, L->pt[(i + 1) % L->n]);
+        double a[3] = {p[0] - m[0], p[1] - m[1], p[2] - m[2]};
+        double b[3] = {q[0] - m[0], q[1] - m[1], q[2] - m[2]}, x[3];
+        geom_cross(a, b, x);
+        for (int k = 0; k < 3; k++) N[k] += x[k];
+    }
+}
+
+static int loop_planar(const Ctx *c, const Loop *L, const double m[3])
+{
+    double N[3], size = 0;
+    loop_normal(c, L, m, N);
+    double nn = geom_norm(N);
+    if (!(nn > 0)) return 0;
+    for (int i = 0; i < L->n; i++) {
+        const double *p = ptx(c, L->pt[i]);
+        double d[3] = {p[0] - m[0], p[1] - m[1], p[2] - m[2]};
+        size = fmax(size, geom_norm(d));
+    }
+    for (int i = 0; i < L->n; i++) {
+        const double *p = ptx(c, L->pt[i]);
+        double d[3] = {p[0] - m[0], p[1] - m[1], p[2] - m[2]};
+        if (fabs(geom_dot(d, N)) / nn > PLANAR_TOL * size) return 0;
+    }
+    return 1;
+}
+
+/* Adds the tetrahedron (r, a, b, d) to volume *v and moment mo. */
+static void tet_add(const double r[3], const double *a, const double *b, const double *d, double *v,
+                    double mo[3])
+{
+    double u[3], w[3], z[3], x[3];
+    for (int k = 0; k < 3; k++) u[k] = a[k] - r[k], w[k] = b[k] - r[k], z[k] = d[k] - r[k];
+    geom_cross(w, z, x);
+    double t = geom_dot(u, x) / 6;
+    *v += t;
+    for (int k = 0; k < 3; k++) mo[k] += t * (r[k] + a[k] + b[k] + d[k]) / 4;
+}
+
+/* Volume and moment (about r, the average of their points, returned)
+   of the tetrahedra of the cell's grid-face polygons (pu outward, pl
+   inward), fanned about their first points. */
+static void polys_moment(const Ctx *c, const Poly *pl, const Poly *pu, double r[3], double *v, double mo[3])
+{
+    int np = 0;
+    r[0] = r[1] = r[2] = mo[0] = mo[1] = mo[2] = *v = 0;
+    for (int a = 0; a < 3; a++)
+        for (int h = 0; h < 2; h++) {
+            const Poly *p = h ? &pu[a] : &pl[a];
+            for (int i = 0; i < p->n; i++, np++)
+                for (int k = 0; k < 3; k++) r[k] += ptx(c, p->pt[i])[k];
+        }
+    for (int k = 0; k < 3 && np; k++) r[k] /= np;
+    for (int a = 0; a < 3; a++)
+        for (int h = 0; h < 2; h++) {
+            const Poly *p = h ? &pu[a] : &pl[a];
+            for (int i = 1; i + 1 < p->n; i++)
+                tet_add(r, ptx(c, p->pt[0]), ptx(c, p->pt[h ? i : i + 1]), ptx(c, p->pt[h ? i + 1 : i]), v,
+                        mo);
+        }
+}
+
+/* Pyramid (triangle centroid - o) . S of triangle (a, b, d): positive
+   when the triangle faces away from o. */
+static double pyramid(const double *a, const double *b, const double *d, const double o[3])
+{
+    double u[3], v[3], S[3], r[3];
+    for (int k = 0; k < 3; k++) {
+        u[k] = b[k] - a[k];
+        v[k] = d[k] - a[k];
+        r[k] = (a[k] + b[k] + d[k]) / 3 - o[k];
+    }
+    geom_cross(u, v, S);
+    return geom_dot(r, S);
+}
+
+/* The triangulation of loop L (by its own points) whose smallest pyramid
+   on o is largest: dynamic programming over sub-polygons i..j.  Writes
+   the split point of each sub-polygon into split and returns that
+   smallest pyramid. */
+static double best_triangulation(const Ctx *c, const Loop *L, const double o[3], int split[MAXS][MAXS])
+{
+    static const double none = INFINITY;
+    double q[MAXS][MAXS];
+    int n = L->n;
+    for (int len = 1; len < n; len++)
+        for (int i = 0; i + len < n; i++) {
+            int j = i + len;
+            q[i][j] = len == 1 ? none : -INFINITY;
+            for (int k = i + 1; k < j; k++) {
+                double t = pyramid(ptx(c, L->pt[i]), ptx(c, L->pt[k]), ptx(c, L->pt[j]), o);
+                t = fmin(t, fmin(q[i][k], q[k][j]));
+                if (t > q[i][j]) q[i][j] = t, split[i][j] = k;
+            }
+        }
+    return q[0][n - 1];
+}
+
+static void emit_split(Ctx *c, const Loop *L, int split[MAXS][MAXS], int i, int j, int cell)
+{
+    if (j - i < 2) return;
+    int k = split[i][j];
+    int tri[3] = {L->pt[i], L->pt[k], L->pt[j]}, lf[3] = {L->leaf[i], L->leaf[k], L->leaf[j]};
+    add_wall(c, tri, lf, 3, cell);
+    emit_split(c, L, split, i, k, cell);
+    emit_split(c, L, split, k, j, cell);
+}
+
+/* Tetrahedra on r of a triangulation (split) of sub-polygon i..j. */
+static void split_moment(const Ctx *c, const Loop *L, int split[MAXS][MAXS], int i, int j, const double r[3],
+                         double *v, double mo[3])
+{
+    if (j - i < 2) return;
+    int k = split[i][j];
+    tet_add(r, ptx(c, L->pt[i]), ptx(c, L->pt[k]), ptx(c, L->pt[j]), v, mo);
+    split_moment(c, L, split, i, k, r, v, mo);
+    split_moment(c, L, split, k, j, r, v, mo);
+}
+
+static double split_quality(const Ctx *c, const Loop *L, int split[MAXS][MAXS], int i, int j,
+                            const double o[3])
+{
+    if (j - i < 2) return INFINITY;
+    int k = split[i][j];
+    double q = pyramid(ptx(c, L->pt[i]), ptx(c, L->pt[k]), ptx(c, L->pt[j]), o);
+    return fmin(q, fmin(split_quality(c, L, split, i, k, o), split_quality(c, L, split, k, j, o)));
+}
+
+/* Fan of loop L about m: its tetrahedra on r added to v, mo. */
+static void fan_moment(const Ctx *c, const Loop *L, const double m[3], const double r[3], double *v,
+                       double mo[3])
+{
+    for (int i = 0; i < L->n; i++) tet_add(r, m, ptx(c, L->pt[i]), ptx(c, L->pt[(i + 1) % L->n]), v, mo);
+}
+
+/* A planar loop is one face; any other a fan of triangles about its
+   centroid, unless some of those triangles would face into the cell (a
+   saddle-shaped loop in a thin cell) and a triangulation by the loop's
+   own points does better.  Triangles are judged by their pyramids on the
+   centroid of the cell they close, as checkMesh judges face pyramids;
+   the cell's other faces have volume vb and moment mb about r.  The best
+   triangulation depends on that centroid, which depends on the
+   triangulation, so the choice is repeated a few times. */
+static void emit_loop(Ctx *c, const Loop *L, int cell, const double r[3], double vb, const double mb[3])
+{
+    double m[3];
+    if (L->n < 3) return;
+    loop_centroid(c, L, m);
+    if (L->n == 3 || loop_planar(c, L, m)) {
+        add_wall(c, L->pt, L->leaf, L->n, cell);
+        return;
+    }
+    double v = vb, mo[3] = {mb[0], mb[1], mb[2]}, o[3], q0 = INFINITY;
+    fan_moment(c, L, m, r, &v, mo);
+    for (int k = 0; k < 3; k++) o[k] = v > 0 ? mo[k] / v : r[k];
+    for (int i = 0; i < L->n; i++)
+        q0 = fmin(q0, pyramid(m, ptx(c, L->pt[i]), ptx(c, L->pt[(i + 1) % L->n]), o));
+    int split[MAXS][MAXS], best[MAXS][MAXS], have = 0;
+    double qb = q0;
+    for (int it = 0; it < 4 && !(qb > 0); it++) {
+        best_triangulation(c, L, o, split);
+        v = vb;
+        memcpy(mo, mb, sizeof mo);
+        split_moment(c, L, split, 0, L->n - 1, r, &v, mo);
+        for (int k = 0; k < 3; k++) o[k] = v > 0 ? mo[k] / v : r[k];
+        double q = split_quality(c, L, split, 0, L->n - 1, o);
+        if (q > qb) qb = q, have = 1, memcpy(best, split, sizeof best);
+    }
+    if (have) {
+        emit_split(c, L, best, 0, L->n - 1, cell);
+        return;
+    }
+    int mp = meshbuild_point(&c->b, m);
+    for (int i = 0; i < L->n; i++) {
+        int j = (i + 1) % L->n;
+        int tri[3] = {mp, L->pt[i], L->pt[j]}, lf[3] = {-1, L->leaf[i], L->leaf[j]};
+        add_wall(c, tri, lf, 3, cell);
+    }
+}
+
+/* Angle of p about axis (o, d) in the frame e1, e2, relative to t0, in
+   [0, 2 pi). */
+static double angle(const double *p, const double o[3], const double e1[3], const double e2[3], double t0)
+{
+    double r[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
+    double t = atan2(geom_dot(r, e2), geom_dot(r, e1)) - t0;
+    while (t < 0) t += 2 * M_PI;
+    while (t >= 2 * M_PI) t -= 2 * M_PI;
+    return t;
+}
+
+/* Triangle t (0..5) of the band joining rims A and B: steps are 0 (along
+   A) or 1 (along B reversed, which winds round the axis like A); j0 is
+   the point of B reversed facing A's first point. */
+static void band_tri(const Loop *A, const Loop *B, int j0, const char *seq, int t, int tri[3], int lf[3])
+{
+    int i = 0, j = 0;
+    for (int s = 0; s < t; s++) seq[s] ? j++ : i++;
+    int b0 = (3 - (j0 + j) % 3) % 3, b1 = (3 - (j0 + j + 1) % 3) % 3, a0 = i % 3, a1 = (i + 1) % 3;
+    if (!seq[t]) {
+        tri[0] = A->pt[a0], tri[1] = A->pt[a1], tri[2] = B->pt[b0];
+        lf[0] = A->leaf[a0], lf[1] = A->leaf[a1], lf[2] = B->leaf[b0];
+    } else {
+        tri[0] = B->pt[b1], tri[1] = B->pt[b0], tri[2] = A->pt[a0];
+        lf[0] = B->leaf[b1], lf[1] = B->leaf[b0], lf[2] = A->leaf[a0];
+    }
+}
+
+/* Smallest face pyramid of the band on the centroid of the cell it
+   closes (grid faces: volume v0, moment m0 about r). */
+static double band_quality(const Ctx *c, const Loop *A, const Loop *B, int j0, const char *seq,
+                           const double r[3], double v0, const double m0[3])
+{
+    double v = v0, mo[3] = {m0[0], m0[1], m0[2]}, o[3], q = INFINITY;
+    int tri[6][3], lf[3];
+    for (int t = 0; t < 6; t++) {
+        band_tri(A, B, j0, seq, t, tri[t], lf);
+        tet_add(r, ptx(c, tri[t][0]), ptx(c, tri[t][1]), ptx(c, tri[t][2]), &v, mo);
+    }
+    if (!(v > 0)) return -INFINITY;
+    for (int k = 0; k < 3; k++) o[k] = mo[k] / v;
+    for (int t = 0; t < 6; t++)
+        q = fmin(q, pyramid(ptx(c, tri[t][0]), ptx(c, tri[t][1]), ptx(c, tri[t][2]), o));
+    return q;
+}
+
+/* The body-diagonal case: joins triangle loops A and B (normals facing
+   each other) by a band of six triangles, each on one rim edge.  The
+   band zips the rims in order of angle about the axis through their
+   centroids; when one of its triangles would face into the cell (a
+   skewed cell), every other zip (3 alignments x 20 orders) is tried and
+   the one with the largest smallest pyramid kept.  Returns 0 when the
+   loops do not wind as expected (the caller then keeps them apart). */
+static int tunnel(Ctx *c, const Loop *A, const Loop *B, const Poly *pl, const Poly *pu, int cell)
+{
+    double ca[3], cb[3], na[3], nb[3], d[3], e1[3], e2[3];
+    loop_centroid(c, A, ca);
+    loop_centroid(c, B, cb);
+    loop_normal(c, A, ca, na);
+    loop_normal(c, B, cb, nb);
+    for (int k = 0; k < 3; k++) d[k] = cb[k] - ca[k];
+    if (!(geom_dot(na, d) > 0) || !(geom_dot(nb, d) < 0)) return 0;
+    double dn = geom_norm(d);
+    for (int k = 0; k < 3; k++) d[k] /= dn;
+    int ax = fabs(d[0]) < fabs(d[1]) ? (fabs(d[0]) < fabs(d[2]) ? 0 : 2) : (fabs(d[1]) < fabs(d[2]) ? 1 : 2);
+    double ref[3] = {0, 0, 0};
+    ref[ax] = 1;
+    geom_cross(d, ref, e1);
+    double en = geom_norm(e1);
+    for (int k = 0; k < 3; k++) e1[k] /= en;
+    geom_cross(d, e1, e2);
+    double t0 = angle(ptx(c, A->pt[0]), ca, e1, e2, 0);
+    double al[4], be[4], braw[3];
+    for (int i = 0; i < 3; i++) al[i] = angle(ptx(c, A->pt[i]), ca, e1, e2, t0);
+    al[3] = 2 * M_PI;
+    if (!(al[1] < al[2])) return 0;
+    /* B reversed runs the same way round as A; start at its largest angle */
+    int j0 = 0;
+    for (int j = 0; j < 3; j++) {
+        braw[j] = angle(ptx(c, B->pt[(3 - j) % 3]), ca, e1, e2, t0);
+        if (braw[j] > braw[j0]) j0 = j;
+    }
+    for (int j = 0; j < 4; j++) be[j] = j == 0 ? braw[j0] - 2 * M_PI : braw[(j0 + j) % 3];
+    if (!(be[1] < be[2])) return 0;
+    char seq[6];
+    for (int i = 0, j = 0, t = 0; t < 6; t++) {
+        seq[t] = (char)!(j == 3 || (i < 3 && al[i + 1] < be[j + 1]));
+        seq[t] ? j++ : i++;
+    }
+    double r[3], v0, m0[3];
+    polys_moment(c, pl, pu, r, &v0, m0);
+    double best = band_quality(c, A, B, j0, seq, r, v0, m0);
+    if (!(best > 0))
+        for (int jj = 0; jj < 3; jj++)
+            for (int bits = 0; bits < 64; bits++) {
+                char sq[6];
+                int na_ = 0;
+                for (int t = 0; t < 6; t++) na_ += !(sq[t] = (char)((bits >> t) & 1));
+                if (na_ != 3) continue;
+                double q = band_quality(c, A, B, jj, sq, r, v0, m0);
+                if (q > best) best = q, j0 = jj, memcpy(seq, sq, sizeof seq);
+            }
+    for (int t = 0; t < 6; t++) {
+        int tri[3], lf[3];
+        band_tri(A, B, j0, seq, t, tri, lf);
+        add_wall(c, tri, lf, 3, cell);
+    }
+    c->st->ntunnel++;
+    return 1;
+}
+
+/* ---- step 6: cells ---- */
+
+/* Base vertex of Cartesian cell (i, j, k). */
+static int64_t cell_base(const Ctx *c, int i, int j, int k)
+{
+    return i + c->nv[0] * (j + (int64_t)c->nv[1] * k);
+}
+
+static int fluid_mask(const Ctx *c, int64_t v0)
+{
+    int m = 0;
+    for (int q = 0; q < 8; q++)
+        if (c->cls[cell_corner(c, v0, q)]) m |= 1 << q;
+    return m;
+}
+
+static void boundary_faces(Ctx *c, Poly *pl, Poly *pu, int cell, int mask)
+{
+    Seg s[MAXS];
+    int ns = 0;
+    for (int a = 0; a < 3; a++) {
+        poly_segments(&pl[a], 0, s, &ns);
+        poly_segments(&pu[a], 1, s, &ns);
+    }
+    ns = cancel_spurs(s, ns);
+    Loop loops[MAXS / 3 + 1];
+    int nl = chain(s, ns, loops, MAXS / 3 + 1);
+    int diag = 0;
+    for (int q = 0; q < 4; q++)
+        if (mask == ((1 << q) | (1 << (7 - q)))) diag = 1;
+    if (diag && nl == 2 && loops[0].n == 3 && loops[1].n == 3 &&
+        (tunnel(c, &loops[0], &loops[1], pl, pu, cell) || tunnel(c, &loops[1], &loops[0], pl, pu, cell)))
+        return;
+    /* each loop is judged with the others fanned about their centroids */
+    double r[3], v0, m0[3], vf[MAXS / 3 + 1], mf[MAXS / 3 + 1][3];
+    polys_moment(c, pl, pu, r, &v0, m0);
+    for (int l = 0; l < nl; l++) {
+        double m[3];
+        loop_centroid(c, &loops[l], m);
+        vf[l] = mf[l][0] = mf[l][1] = mf[l][2] = 0;
+        fan_moment(c, &loops[l], m, r, &vf[l], mf[l]);
+    }
+    for (int l = 0; l < nl; l++) {
+        double vb = v0, mb[3] = {m0[0], m0[1], m0[2]};
+        for (int q = 0; q < nl; q++)
+            if (q != l) {
+                vb += vf[q];
+                for (int k = 0; k < 3; k++) mb[k] += mf[q][k];
+            }
+        emit_loop(c, &loops[l], cell, r, vb, mb);
+    }
+}
+
+static void cell_faces(Ctx *c, int i, int j, int k)
+{
+    int ijk[3] = {i, j, k};
+    int64_t ci = i + c->n[0] * (j + (int64_t)c->n[1] * k), v0 = cell_base(c, i, j, k);
+    int cell = c->cellid[ci], mask = fluid_mask(c, v0);
+    Poly pl[3], pu[3];
+    double vol = 1;
+    for (int a = 0; a < 3; a++) {
+        face_poly(c, a, v0 + c->sv[a], &pu[a]);
+        if (pu[a].n >= 3 && ijk[a] + 1 < c->n[a])
+            meshbuild_face(&c->b, pu[a].pt, pu[a].n, cell, c->cellid[ci + c->sc[a]], 0);
+        c->vref[a] = (c->x[a][ijk[a]] + c->x[a][ijk[a] + 1]) / 2;
+        vol *= c->x[a][ijk[a] + 1] - c->x[a][ijk[a]];
+    }
+    c->cvol[cell] = vol;
+    if (mask == 255) return;
+    c->vacc = 0;
+    for (int a = 0; a < 3; a++) {
+        face_poly(c, a, v0, &pl[a]);
+        poly_volume(c, pu[a].pt, pu[a].n, 0);
+        poly_volume(c, pl[a].pt, pl[a].n, 1);
+    }
+    boundary_faces(c, pl, pu, cell, mask);
+    c->cvol[cell] = c->vacc;
+}
+
+/* Side (0..5) of boundary face f of the grid, or -1. */
+static int face_side(const Ctx *c, const Mesh *grid, int f)
+{
+    for (int a = 0; a < 3; a++)
+        for (int hi = 0; hi < 2; hi++) {
+            double xs = c->x[a][hi ? c->n[a] : 0], tol = SIDE_TOL * (c->x[a][c->n[a]] - c->x[a][0]);
+            int on = 1;
+            for (int q = grid->face_off[f]; q < grid->face_off[f + 1] && on; q++)
+                on = fabs(grid->points[3 * (size_t)grid->face_idx[q] + a] - xs) <= tol;
+            if (on) return 2 * a + hi;
+        }
+    return -1;
+}
+
+static int box_faces(Ctx *c, const Mesh *grid, Err *e)
+{
+    for (int p = 0; p < grid->npatches; p++) {
+        const Patch *P = &grid->patches[p];
+        for (int f = P->start; f < P->start + P->size; f++) {
+            int side = face_side(c, grid, f), oc = grid->owner[f];
+            if (side < 0)
+                return err_set(e, NULL, 0, "grid boundary face %d (patch %s) is not on a side of the box", f,
+                               P->name);
+            int a = side / 2, hi = side & 1,
+                ijk[3] = {oc % c->n[0], (oc / c->n[0]) % c->n[1], oc / (c->n[0] * c->n[1])};
+            ijk[a] = hi ? c->n[a] : 0;
+            Poly q;
+            face_poly(c, a, cell_base(c, ijk[0], ijk[1], ijk[2]), &q);
+            if (q.n < 3 || c->cellid[oc] < 0) continue;
+            if (!hi)
+                for (int l = 1, r = q.n - 1; l < r; l++, r--) {
+                    int t = q.pt[l];
+                    q.pt[l] = q.pt[r];
+                    q.pt[r] = t;
+                }
+            meshbuild_face(&c->b, q.pt, q.n, c->cellid[oc], -1, p);
+            double nv[3] = {0, 0, 0};
+            nv[a] = hi ? 1 : -1;
+            push_wall(c, p, nv);
+        }
+    }
+    return 0;
+}
+
+/* ---- assembly ---- */
+
+static int setup(Ctx *c, const Mesh *grid, Err *e)
+{
+    const CartGrid *cg = &grid->cart;
+    if (cg->n[0] <= 0 || cg->n[1] <= 0 || cg->n[2] <= 0 || !cg->x[0] || !cg->x[1] || !cg->x[2])
+        return err_set(e, NULL, 0, "the grid has no Cartesian extras (cartesianGrid): cut a blockGrid grid");
+    if ((int64_t)cg->n[0] * cg->n[1] * cg->n[2] != grid->ncells)
+        return err_set(e, NULL, 0, "the grid has %d cells but its cartesianGrid %d x %d x %d", grid->ncells,
+                       cg->n[0], cg->n[1], cg->n[2]);
+    for (int p = 0; p < grid->npatches; p++)
+        for (int s = 0; s < c->g->nsurf; s++)
+            if (!strcmp(grid->patches[p].name, c->g->surf[s].name))
+                return err_set(e, c->g->file, c->g->surf[s].line,
+                               "surface '%s' has the name of the grid's patch %d", c->g->surf[s].name, p);
+    for (int k = 0; k < 3; k++) {
+        c->n[k] = cg->n[k];
+        c->nv[k] = cg->n[k] + 1;
+        c->x[k] = cg->x[k];
+    }
+    c->sv[0] = c->sc[0] = 1;
+    c->sv[1] = c->nv[0];
+    c->sv[2] = (int64_t)c->nv[0] * c->nv[1];
+    c->sc[1] = c->n[0];
+    c->sc[2] = (int64_t)c->n[0] * c->n[1];
+    int64_t nv = c->sv[2] * c->nv[2];
+    c->cls = mem_alloc((size_t)nv);
+    c->vpt = mem_alloc(sizeof(int) * (size_t)nv);
+    memset(c->vpt, 0xff, sizeof(int) * (size_t)nv);
+    c->cellid = mem_alloc(sizeof(int) * (size_t)grid->ncells);
+    tab_alloc(c, 1024);
+    meshbuild_init(&c->b);
+    for (int p = 0; p < grid->npatches; p++) {
+        const Patch *P = &grid->patches[p];
+        meshbuild_patch(&c->b, P->name, P->type, P->neighbour, P->groups);
+    }
+    c->npatch_grid = grid->npatches;
+    for (int s = 0; s < c->g->nsurf; s++)
+        meshbuild_patch(&c->b, c->g->surf[s].name, c->g->surf[s].type, NULL, NULL);
+    return 0;
+}
+
+static void ctx_free(Ctx *c)
+{
+    free(c->cls);
+    free(c->vpt);
+    free(c->cellid);
+    free(c->tab);
+    free(c->wall);
+    free(c->cvol);
+    meshbuild_free(&c->b);
+}
+
+static int number_cells(Ctx *c, int **parent)
+{
+    int nc = 0;
+    for (int k = 0; k < c->n[2]; k++)
+        for (int j = 0; j < c->n[1]; j++)
+            for (int i = 0; i < c->n[0]; i++) {
+                int64_t ci = i + c->n[0] * (j + (int64_t)c->n[1] * k);
+                c->cellid[ci] = fluid_mask(c, cell_base(c, i, j, k)) ? nc++ : -1;
+            }
+    *parent = mem_alloc(sizeof(int) * (size_t)(nc ? nc : 1));
+    for (int64_t ci = 0; ci < c->sc[2] * c->n[2]; ci++)
+        if (c->cellid[ci] >= 0) (*parent)[c->cellid[ci]] = (int)ci;
+    return nc;
+}
+
+/* Wall normals in final face order: meshbuild keeps the order of
+   addition within a patch, so the k-th face added to a patch is its k-th
+   face. */
+static void wall_normals(Ctx *c, Mesh *m)
+{
+    int nb = m->nfaces - m->ninternal;
+    m->wall_normal = mem_alloc(sizeof(double) * 3 * (size_t)(nb ? nb : 1));
+    int *next = mem_alloc(sizeof(int) * (size_t)m->npatches);
+    for (int p = 0; p < m->npatches; p++) next[p] = m->patches[p].start;
+    for (size_t w = 0; w < c->nwall; w++) {
+        int f = next[c->wall[w].patch]++;
+        memcpy(m->wall_normal + 3 * (size_t)(f - m->ninternal), c->wall[w].n, 3 * sizeof(double));
+    }
+    free(next);
+}
+
+static void stats(Ctx *c, const Mesh *m)
+{
+    CutStats *st = c->st;
+    st->ncells = m->ncells;
+    st->nsolid = st->ncart - m->ncells;
+    st->frac_min = 1;
+    st->frac_min_cell = -1;
+    st->vol_box = 1;
+    for (int k = 0; k < 3; k++) st->vol_box *= c->x[k][c->n[k]] - c->x[k][0];
+    for (int cl = 0; cl < m->ncells; cl++) {
+        int p = m->cell_parent[cl];
+        int i = p % c->n[0], j = (p / c->n[0]) % c->n[1], k = p / (c->n[0] * c->n[1]);
+        double pv =
+            (c->x[0][i + 1] - c->x[0][i]) * (c->x[1][j + 1] - c->x[1][j]) * (c->x[2][k + 1] - c->x[2][k]);
+        double fr = c->cvol[cl] / pv;
+        st->vol_fluid += c->cvol[cl];
+        if (fr < 1 - 1e-9) st->ncut++;
+        if (fr < st->frac_min) st->frac_min = fr, st->frac_min_cell = cl;
+    }
+}
+
+int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o, Mesh *out, CutStats *st, Err *e)
+{
+    CutOpts od;
+    CutStats sd;
+    if (!o) cut_opts_default(&od), o = &od;
+    if (!st) st = &sd;
+    memset(st, 0, sizeof *st);
+    mesh_init(out);
+    if (!(o->snap >= 0 && o->snap < 0.5))
+        return err_set(e, NULL, 0, "snap distance %g outside [0, 0.5)", o->snap);
+    Ctx c;
+    memset(&c, 0, sizeof c);
+    c.g = g;
+    c.snap = o->snap;
+    c.st = st;
+    if (setup(&c, grid, e)) {
+        ctx_free(&c);
+        return -1;
+    }
+    st->ncart = grid->ncells;
+    classify(&c);
+    cut_lines(&c);
+    snap(&c);
+    int *parent;
+    int nc = number_cells(&c, &parent);
+    if (nc == 0) {
+        free(parent);
+        ctx_free(&c);
+        return err_set(e, g->file, 0, "no cell is left: the geometry leaves no fluid inside the grid");
+    }
+    c.cvol = mem_alloc(sizeof(double) * (size_t)nc);
+    for (int k = 0; k < c.n[2]; k++)
+        for (int j = 0; j < c.n[1]; j++)
+            for (int i = 0; i < c.n[0]; i++)
+                if (c.cellid[i + c.n[0] * (j + (int64_t)c.n[1] * k)] >= 0) cell_faces(&c, i, j, k);
+    if (box_faces(&c, grid, e) || meshbuild_finish(&c.b, out, NULL, NULL, e)) {
+        free(parent);
+        ctx_free(&c);
+        mesh_free(out);
+        mesh_init(out);
+        return -1;
+    }
+    out->cell_parent = parent;
+    for (int k = 0; k < 3; k++) {
+        out->cart.n[k] = c.n[k];
+        out->cart.x[k] = mem_alloc(sizeof(double) * (size_t)c.nv[k]);
+        memcpy(out->cart.x[k], c.x[k], sizeof(double) * (size_t)c.nv[k]);
+    }
+    wall_normals(&c, out);
+    stats(&c, out);
+    ctx_free(&c);
+    return 0;
+}

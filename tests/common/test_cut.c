@@ -1,0 +1,835 @@
+/*
+** test_cut.c: cut cells (cut.h) against exact geometry.
+**
+** Every cut grid is checked for validity: mesh_check (ordering),
+** quality_check (closed cells to 1e-12 of the surface, orientation,
+** positive volumes) and a topological watertightness test: for each cell
+** every directed edge of its outward faces appears exactly once reversed
+** (checkMesh's "cells zipped up"), which makes the immersed boundary and
+** the grid faces one closed surface per cell.  Volumes are compared with
+** closed forms: plane cuts and boxes on grid lines exactly (1e-12), the
+** sphere and the disc by their second-order convergence.  The geometry
+** is always the real one, parsed from a dictionary string.
+*/
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "block.h"
+#include "cut.h"
+#include "dict.h"
+#include "geometry.h"
+#include "mem.h"
+#include "mesh.h"
+#include "quality.h"
+#include "test.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* ---- helpers ---- */
+
+typedef struct Geo {
+    Dict *d;
+    Geometry g;
+} Geo;
+
+/* Parses "surfaces { <text> }"; returns 0 on success. */
+static int geo_make(Geo *G, const char *text)
+{
+    char buf[8192];
+    snprintf(buf, sizeof buf, "surfaces\n{\n%s\n}\n", text);
+    Err e;
+    G->d = dict_parse(buf, strlen(buf), "geometryDict", &e);
+    if (!G->d) {
+        printf("dict_parse: %s\n", e.msg);
+        return -1;
+    }
+    if (geometry_parse(&G->g, G->d, "geometryDict", ".", &e)) {
+        printf("geometry_parse: %s\n", e.msg);
+        dict_free(G->d);
+        return -1;
+    }
+    return 0;
+}
+
+static void geo_free(Geo *G)
+{
+    geometry_free(&G->g);
+    dict_free(G->d);
+}
+
+/* A block grid of the coordinates x[k][0..n[k]]; 2-D (z empty) when twod. */
+static void grid_make(Mesh *m, double *const x[3], const int n[3], int twod)
+{
+    BlockSide side[BLOCK_NSIDES];
+    for (int s = 0; s < BLOCK_NSIDES; s++)
+        side[s] = (BlockSide){block_side_names[s], twod && s >= 4 ? "empty" : "patch", NULL};
+    Err e;
+    mesh_init(m);
+    if (block_mesh(m, x, n, side, NULL, "test", NULL, &e)) {
+        printf("block_mesh: %s\n", e.msg);
+        exit(1);
+    }
+}
+
+/* Uniform grid of n cells per axis on lo..hi. */
+static void grid_box(Mesh *m, const int n[3], const double lo[3], const double hi[3], int twod)
+{
+    double *x[3];
+    for (int k = 0; k < 3; k++) {
+        x[k] = mem_alloc(sizeof(double) * (size_t)(n[k] + 1));
+        for (int i = 0; i <= n[k]; i++) x[k][i] = i == n[k] ? hi[k] : lo[k] + (hi[k] - lo[k]) * i / n[k];
+    }
+    grid_make(m, x, n, twod);
+    for (int k = 0; k < 3; k++) free(x[k]);
+}
+
+static void grid_unit(Mesh *m, int n)
+{
+    int nn[3] = {n, n, n};
+    double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    grid_box(m, nn, lo, hi, 0);
+}
+
+static int cmp64(const void *a, const void *b)
+{
+    int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Each directed edge of a cell's outward faces appears once, reversed
+   once.  Returns the first bad cell or -1. */
+static int zipped(const Mesh *m)
+{
+    size_t cap = 64;
+    int64_t *e = mem_alloc(cap * sizeof *e);
+    int bad = -1;
+    for (int c = 0; c < m->ncells && bad < 0; c++) {
+        size_t ne = 0;
+        for (int i = m->cell_off[c]; i < m->cell_off[c + 1]; i++) {
+            int f = m->cell_faces[i], o = m->face_off[f], n = m->face_off[f + 1] - o;
+            int rev = m->owner[f] != c;
+            for (int q = 0; q < n; q++) {
+                int a = m->face_idx[o + q], b = m->face_idx[o + (q + 1) % n];
+                if (rev) {
+                    int t = a;
+                    a = b;
+                    b = t;
+                }
+                mem_grow((void **)&e, &cap, ne + 1, sizeof *e);
+                e[ne++] = (int64_t)a * m->npoints + b;
+            }
+        }
+        qsort(e, ne, sizeof *e, cmp64);
+        for (size_t i = 0; i < ne && bad < 0; i++) {
+            int64_t a = e[i] / m->npoints, b = e[i] % m->npoints, r = b * m->npoints + a;
+            if ((i + 1 < ne && e[i + 1] == e[i]) || a == b || !bsearch(&r, e, ne, sizeof *e, cmp64)) bad = c;
+        }
+    }
+    free(e);
+    return bad;
+}
+
+/* Full validity check of a cut grid; fills why and returns 0 when sound. */
+static int check_grid(Mesh *m, char *why, size_t nwhy)
+{
+    Err e;
+    if (mesh_check(m, &e)) {
+        snprintf(why, nwhy, "mesh_check: %s", e.msg);
+        return -1;
+    }
+    Quality q;
+    quality_measure(m, &q);
+    if (quality_check(m, &q, NULL, &e)) {
+        snprintf(why, nwhy, "quality_check: %s", e.msg);
+        return -1;
+    }
+    int c = zipped(m);
+    if (c >= 0) {
+        snprintf(why, nwhy, "cell %d is not zipped up (parent %d)", c, m->cell_parent[c]);
+        return -1;
+    }
+    int nb = m->nfaces - m->ninternal;
+    for (int f = 0; f < nb; f++) {
+        double l = sqrt(m->wall_normal[3 * f] * m->wall_normal[3 * f] +
+                        m->wall_normal[3 * f + 1] * m->wall_normal[3 * f + 1] +
+                        m->wall_normal[3 * f + 2] * m->wall_normal[3 * f + 2]);
+        if (fabs(l - 1) > 1e-12) {
+            snprintf(why, nwhy, "boundary face %d: wall normal of length %g", f + m->ninternal, l);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* Cuts grid by G; on failure prints the message and returns -1. */
+static int cut(const Mesh *grid, Geo *G, double snap, Mesh *out, CutStats *st)
+{
+    CutOpts o;
+    cut_opts_default(&o);
+    if (snap >= 0) o.snap = snap;
+    Err e;
+    if (cut_mesh(grid, &G->g, &o, out, st, &e)) {
+        printf("cut_mesh: %s\n", e.msg);
+        return -1;
+    }
+    return 0;
+}
+
+/* Cuts, checks and returns the fluid volume (NAN on failure, with why). */
+static double cut_check(const Mesh *grid, const char *text, CutStats *st, char *why, size_t nwhy)
+{
+    Geo G;
+    snprintf(why, nwhy, "geometry failed");
+    if (geo_make(&G, text)) return NAN;
+    Mesh m;
+    double v = NAN;
+    snprintf(why, nwhy, "cut failed");
+    if (!cut(grid, &G, -1, &m, st)) {
+        if (!check_grid(&m, why, nwhy)) v = st->vol_fluid;
+        mesh_free(&m);
+    }
+    geo_free(&G);
+    return v;
+}
+
+/* Volume of the unit cube below the plane n.x = d (n > 0 componentwise). */
+static double cube_below_plane(const double n[3], double d)
+{
+    double v = 0;
+    for (int c = 0; c < 8; c++) {
+        double s = d - n[0] * (c & 1) - n[1] * ((c >> 1) & 1) - n[2] * (c >> 2);
+        int sg = ((c & 1) + ((c >> 1) & 1) + (c >> 2)) & 1 ? -1 : 1;
+        if (s > 0) v += sg * s * s * s;
+    }
+    return v / (6 * n[0] * n[1] * n[2]);
+}
+
+/* ---- tests ---- */
+
+/* A half-space at an arbitrary angle on a graded grid: exact volume, and
+   the complementary flow side fills the rest of the box. */
+TEST(cut_halfspace_exact)
+{
+    int n[3] = {9, 11, 10};
+    double *x[3];
+    for (int k = 0; k < 3; k++) {
+        x[k] = mem_alloc(sizeof(double) * (size_t)(n[k] + 1));
+        for (int i = 0; i <= n[k]; i++) x[k][i] = pow((double)i / n[k], 1.3 + 0.1 * k);
+    }
+    Mesh grid;
+    grid_make(&grid, x, n, 0);
+    double nn[3] = {0.3, 0.5, 0.8}, l = sqrt(0.98);
+    for (int k = 0; k < 3; k++) nn[k] /= l;
+    const double p[3] = {0.45, 0.52, 0.61};
+    double d = nn[0] * p[0] + nn[1] * p[1] + nn[2] * p[2], exact = cube_below_plane(nn, d);
+    char txt[512], why[2100];
+    CutStats s1, s2;
+    snprintf(txt, sizeof txt,
+             "plane { flow inside; shape halfSpace; point (%.17g %.17g %.17g); normal (%.17g %.17g %.17g); }",
+             p[0], p[1], p[2], nn[0], nn[1], nn[2]);
+    double v1 = cut_check(&grid, txt, &s1, why, sizeof why);
+    EXPECT(!isnan(v1), "inside: %s", why);
+    snprintf(
+        txt, sizeof txt,
+        "plane { flow outside; shape halfSpace; point (%.17g %.17g %.17g); normal (%.17g %.17g %.17g); }",
+        p[0], p[1], p[2], nn[0], nn[1], nn[2]);
+    double v2 = cut_check(&grid, txt, &s2, why, sizeof why);
+    EXPECT(!isnan(v2), "outside: %s", why);
+    NEAR(v1, exact, 1e-12);
+    NEAR(v1 + v2, 1.0, 1e-12);
+    EXPECT(s1.ncut > 0 && s1.nboundary > 0, "ncut %d nboundary %d", s1.ncut, s1.nboundary);
+    NEAR(s1.vol_box, 1.0, 1e-15);
+    /* the cut plane's area inside the cube, from both sides */
+    NEAR(s1.area_boundary, s2.area_boundary, 1e-12);
+    mesh_free(&grid);
+    for (int k = 0; k < 3; k++) free(x[k]);
+}
+
+/* A solid box rotated 30 degrees about z whose corners sit on grid lines
+   and whose top and bottom lie on grid planes: every cell meets at most
+   one face plane, so the cut is exact. */
+TEST(cut_rotated_box_exact)
+{
+    const double L = 0.5, c = cos(30 * M_PI / 180), s = sin(30 * M_PI / 180), x0 = 0.35, y0 = 0.1;
+    double kx[] = {0, x0 - L * s, x0, x0 + L * c - L * s, x0 + L * c, 1};
+    double ky[] = {0, y0, y0 + L * s, y0 + L * c, y0 + L * s + L * c, 1};
+    double kz[] = {0, 0.2, 0.8, 1};
+    double *kk[3] = {kx, ky, kz};
+    int nk[3] = {6, 6, 4}, n[3];
+    double *x[3];
+    for (int a = 0; a < 3; a++) {
+        x[a] = mem_alloc(sizeof(double) * 64);
+        n[a] = 0;
+        x[a][0] = kk[a][0];
+        for (int i = 0; i + 1 < nk[a]; i++) {
+            int m = (int)ceil((kk[a][i + 1] - kk[a][i]) / 0.07);
+            for (int j = 1; j <= m; j++)
+                x[a][++n[a]] = j == m ? kk[a][i + 1] : kk[a][i] + (kk[a][i + 1] - kk[a][i]) * j / m;
+        }
+    }
+    Mesh grid;
+    grid_make(&grid, x, n, 0);
+    char why[2100];
+    CutStats st;
+    double v = cut_check(&grid,
+                         "box { flow outside; shape box; min (0 0 0.2); max (0.5 0.5 0.8);"
+                         " rotate { axis (0 0 1); angle 30; origin (0 0 0); } translate (0.35 0.1 0); }",
+                         &st, why, sizeof why);
+    EXPECT(!isnan(v), "%s", why);
+    NEAR(v, 1 - L * L * 0.6, 1e-12);
+    /* the box's surface: four sides and the two ends */
+    NEAR(st.area_boundary, 4 * L * 0.6 + 2 * L * L, 1e-12);
+    mesh_free(&grid);
+    for (int a = 0; a < 3; a++) free(x[a]);
+}
+
+/* An axis-aligned solid box whose faces lie on grid planes: vertices on
+   its surface are solid, the cut is exact; the plane x = 0.5 through grid
+   vertices, the plane x + y = 1 through grid edges and face diagonals and
+   x + y + z = 1.5 through vertices too. */
+TEST(cut_on_grid_planes)
+{
+    Mesh grid;
+    grid_unit(&grid, 10);
+    char why[2100];
+    CutStats st;
+    double v =
+        cut_check(&grid, "box { shape box; min (0.2 0.3 0.4); max (0.7 0.8 0.9); }", &st, why, sizeof why);
+    EXPECT(!isnan(v), "box: %s", why);
+    NEAR(v, 1 - 0.125, 1e-12);
+    NEAR(st.area_boundary, 6 * 0.25, 1e-12);
+    EXPECT(st.nsnap > 0, "nsnap %d", st.nsnap);
+    /* flow inside it: valid; its vertices count as solid, so the cells
+       along its edges are chamfered (cut.c, "Snapping") */
+    v = cut_check(&grid, "box { flow inside; shape box; min (0.2 0.3 0.4); max (0.7 0.8 0.9); }", &st, why,
+                  sizeof why);
+    EXPECT(!isnan(v), "box, flow inside: %s", why);
+    EXPECT(st.ncells == 125 && v < 0.125 && v > 0.1, "ncells %d volume %g", st.ncells, v);
+    v = cut_check(&grid, "p { flow inside; shape halfSpace; point (0.5 0 0); normal (1 0 0); }", &st, why,
+                  sizeof why);
+    EXPECT(!isnan(v), "x = 0.5: %s", why);
+    NEAR(v, 0.5, 1e-12);
+    EXPECT(st.ncells == 500 && st.ncut == 0, "ncells %d ncut %d", st.ncells, st.ncut);
+    NEAR(st.area_boundary, 1.0, 1e-12);
+    v = cut_check(&grid, "p { flow inside; shape halfSpace; point (0.5 0.5 0); normal (1 1 0); }", &st, why,
+                  sizeof why);
+    EXPECT(!isnan(v), "x + y = 1: %s", why);
+    NEAR(v, 0.5, 1e-12);
+    NEAR(st.area_boundary, sqrt(2.0), 1e-12);
+    v = cut_check(&grid, "p { flow inside; shape halfSpace; point (0.5 0.5 0.5); normal (1 1 1); }", &st, why,
+                  sizeof why);
+    EXPECT(!isnan(v), "x + y + z = 1.5: %s", why);
+    NEAR(v, 0.5, 1e-12);
+    mesh_free(&grid);
+}
+
+/* Sphere volume and surface area converge at second order. */
+TEST(cut_sphere_convergence)
+{
+    const double R = 0.3, V = 4 * M_PI * R * R * R / 3, A = 4 * M_PI * R * R;
+    const int ns[4] = {8, 16, 32, 64};
+    double ev[4], ea[4];
+    char why[2100], txt[256];
+    snprintf(txt, sizeof txt, "ball { flow inside; shape sphere; centre (0.5123 0.4871 0.5037); radius %g; }",
+             R);
+    printf("   n   volume error   order   area error   order\n");
+    for (int r = 0; r < 4; r++) {
+        Mesh grid;
+        grid_unit(&grid, ns[r]);
+        CutStats st;
+        double v = cut_check(&grid, txt, &st, why, sizeof why);
+        EXPECT(!isnan(v), "n = %d: %s", ns[r], why);
+        ev[r] = fabs(v - V) / V;
+        ea[r] = fabs(st.area_boundary - A) / A;
+        printf("  %3d  %.4e  %6.3f   %.4e  %6.3f\n", ns[r], ev[r], r ? log2(ev[r - 1] / ev[r]) : 0.0, ea[r],
+               r ? log2(ea[r - 1] / ea[r]) : 0.0);
+        mesh_free(&grid);
+    }
+    double ov = log2(ev[1] / ev[3]) / 2, oa = log2(ea[1] / ea[3]) / 2;
+    printf("  observed order (16 -> 64): volume %.3f, area %.3f\n", ov, oa);
+    EXPECT(ov > 1.8, "volume order %g", ov);
+    EXPECT(oa > 1.8, "area order %g", oa);
+    EXPECT(ev[3] < 2e-3, "volume error %g at 64", ev[3]);
+}
+
+/* 2-D: the disc (a flattened sphere) converges at second order; the cells
+   are prisms between the empty patches. */
+TEST(cut_disc_convergence)
+{
+    const double R = 0.31, Aex = M_PI * R * R * 0.1;
+    const int ns[4] = {8, 16, 32, 64};
+    double ev[4];
+    char why[2100];
+    printf("   n   area error   order\n");
+    for (int r = 0; r < 4; r++) {
+        int n[3] = {ns[r], ns[r], 1};
+        double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 0.1};
+        Mesh grid;
+        grid_box(&grid, n, lo, hi, 1);
+        Geo G;
+        EXPECT(!geo_make(&G, "disc { flow inside; shape sphere; centre (0.5071 0.4933 0.05); radius 0.31; }"),
+               "geometry");
+        geometry_flatten(&G.g, 2, 0.05);
+        Mesh m;
+        CutStats st;
+        EXPECT(!cut(&grid, &G, -1, &m, &st), "cut");
+        EXPECT(!check_grid(&m, why, sizeof why), "n = %d: %s", ns[r], why);
+        EXPECT(mesh_empty_axis(&m) == 2, "empty axis %d", mesh_empty_axis(&m));
+        for (int f = m.ninternal; f < m.nfaces; f++) {
+            int p = mesh_face_patch(&m, f);
+            if (p == 4 || p == 5)
+                EXPECT(fabs(m.face_area[3 * f + 2]) > 0 && m.face_area[3 * f] == 0, "front face");
+        }
+        ev[r] = fabs(st.vol_fluid - Aex) / Aex;
+        printf("  %3d  %.4e  %6.3f\n", ns[r], ev[r], r ? log2(ev[r - 1] / ev[r]) : 0.0);
+        mesh_free(&m);
+        geo_free(&G);
+        mesh_free(&grid);
+    }
+    double o = log2(ev[1] / ev[3]) / 2;
+    printf("  observed order (16 -> 64): %.3f\n", o);
+    EXPECT(o > 1.8, "order %g", o);
+}
+
+/* Inside and outside flow of one sphere fill the box exactly, and the
+   boundary is the same surface seen from both sides. */
+TEST(cut_sphere_complement)
+{
+    Mesh grid;
+    grid_unit(&grid, 16);
+    char why[2100];
+    CutStats s1, s2;
+    double v1 = cut_check(&grid, "b { flow inside; shape sphere; centre (0.47 0.52 0.5); radius 0.33; }", &s1,
+                          why, sizeof why);
+    EXPECT(!isnan(v1), "inside: %s", why);
+    double v2 = cut_check(&grid, "b { flow outside; shape sphere; centre (0.47 0.52 0.5); radius 0.33; }",
+                          &s2, why, sizeof why);
+    EXPECT(!isnan(v2), "outside: %s", why);
+    NEAR(v1 + v2, 1.0, 1e-12);
+    NEAR(s1.area_boundary, s2.area_boundary, 1e-12);
+    EXPECT(s1.nboundary > 0 && s1.ntunnel == 0, "nboundary %d ntunnel %d", s1.nboundary, s1.ntunnel);
+    mesh_free(&grid);
+}
+
+/* The sphere shifted by fractions of a cell: every volume within 1.5
+   times the error of the convergence study at 16 cells (2.1e-2). */
+TEST(cut_sphere_shifted)
+{
+    Mesh grid;
+    grid_unit(&grid, 16);
+    const double R = 0.3, V = 4 * M_PI * R * R * R / 3;
+    double worst = 0;
+    char why[2100], txt[256];
+    for (int s = 0; s < 8; s++) {
+        double d = s / 8.0 / 16;
+        snprintf(txt, sizeof txt, "b { flow inside; shape sphere; centre (%.17g %.17g %.17g); radius 0.3; }",
+                 0.5 + d, 0.5 + 0.7 * d, 0.5 + 0.3 * d);
+        CutStats st;
+        double v = cut_check(&grid, txt, &st, why, sizeof why);
+        EXPECT(!isnan(v), "shift %d: %s", s, why);
+        worst = fmax(worst, fabs(v - V) / V);
+    }
+    printf("  worst relative volume error over 8 shifts: %.3e\n", worst);
+    EXPECT(worst < 3e-2, "worst %g", worst);
+    mesh_free(&grid);
+}
+
+/* Degenerate positions: a sphere through grid vertices, spheres tangent
+   to a grid plane at a vertex and at an edge midpoint, a slab thinner
+   than a cell. */
+TEST(cut_degenerate)
+{
+    Mesh grid;
+    grid_unit(&grid, 10);
+    char why[2100];
+    CutStats st;
+    const double V = 4 * M_PI * 0.027 / 3;
+    /* radius 0.3 about a vertex: (0.8,0.5,0.5), (0.7,0.7,0.6), ... lie on it */
+    double v = cut_check(&grid, "b { flow inside; shape sphere; centre (0.5 0.5 0.5); radius 0.3; }", &st,
+                         why, sizeof why);
+    EXPECT(!isnan(v), "through vertices, inside: %s", why);
+    EXPECT(fabs(v - V) < 0.1 * V, "volume %g vs %g", v, V);
+    EXPECT(st.nsnap > 0, "nsnap %d", st.nsnap);
+    v = cut_check(&grid, "b { flow outside; shape sphere; centre (0.5 0.5 0.5); radius 0.3; }", &st, why,
+                  sizeof why);
+    EXPECT(!isnan(v), "through vertices, outside: %s", why);
+    EXPECT(fabs(1 - v - V) < 0.1 * V, "volume %g vs %g", 1 - v, V);
+    /* tangent to x = 0.2 at the vertex (0.2, 0.5, 0.5) */
+    v = cut_check(&grid, "b { shape sphere; centre (0.5 0.5 0.5); radius 0.3; }", &st, why, sizeof why);
+    EXPECT(!isnan(v), "tangent at a vertex: %s", why);
+    /* tangent to x = 0.2 at the midpoint of a z edge */
+    v = cut_check(&grid, "b { shape sphere; centre (0.5 0.5 0.55); radius 0.3; }", &st, why, sizeof why);
+    EXPECT(!isnan(v), "tangent at an edge: %s", why);
+    /* infinite cylinder along z tangent to the grid lines x = 0.2 */
+    v = cut_check(&grid,
+                  "c { shape cylinder; point1 (0.5 0.5 0); point2 (0.5 0.5 1); radius 0.3; infinite yes; }",
+                  &st, why, sizeof why);
+    EXPECT(!isnan(v), "cylinder tangent to grid lines: %s", why);
+    /* a slab between grid planes, thinner than a cell: dropped, counted */
+    v = cut_check(&grid, "s { shape box; min (0.43 -1 -1); max (0.46 2 2); }", &st, why, sizeof why);
+    EXPECT(!isnan(v), "thin slab: %s", why);
+    NEAR(v, 1.0, 1e-12);
+    EXPECT(st.nthin == 11 * 11, "nthin %d", st.nthin);
+    /* a slab through grid vertices, thinner than a cell */
+    v = cut_check(&grid, "s { shape box; min (0.4 -1 -1); max (0.43 2 2); }", &st, why, sizeof why);
+    EXPECT(!isnan(v), "thin slab on a grid plane: %s", why);
+    NEAR(v, 1.0, 1e-12);
+    EXPECT(st.nthin == 11 * 11, "nthin %d", st.nthin);
+    mesh_free(&grid);
+}
+
+/* Two balls at opposite corners of one cell: that cell's only fluid
+   corners are a body diagonal, and the tunnel keeps it one cell. */
+TEST(cut_tunnel)
+{
+    Mesh grid;
+    grid_unit(&grid, 4);
+    char why[2100];
+    CutStats st;
+    double v = cut_check(&grid,
+                         "u { flow inside; shape union;"
+                         " a { shape sphere; centre (0.25 0.25 0.25); radius 0.1; }"
+                         " b { shape sphere; centre (0.5 0.5 0.5); radius 0.1; } }",
+                         &st, why, sizeof why);
+    EXPECT(!isnan(v), "%s", why);
+    EXPECT(st.ntunnel == 1, "ntunnel %d", st.ntunnel);
+    EXPECT(st.ncells == 15, "ncells %d", st.ncells);
+    mesh_free(&grid);
+}
+
+/* Box-side patches keep their names and types, cyclic pairs stay matched
+   face for face, the surfaces' patches follow; clashing names and empty
+   results are refused. */
+TEST(cut_patches)
+{
+    int n[3] = {6, 5, 4};
+    double *x[3];
+    for (int k = 0; k < 3; k++) {
+        x[k] = mem_alloc(sizeof(double) * (size_t)(n[k] + 1));
+        for (int i = 0; i <= n[k]; i++) x[k][i] = (double)i / n[k];
+    }
+    BlockSide side[BLOCK_NSIDES] = {{"left", "cyclic", "right"}, {"right", "cyclic", "left"},
+                                    {"walls", "wall", NULL},     {"walls", "wall", NULL},
+                                    {"bottom", "patch", NULL},   {"top", "patch", NULL}};
+    Mesh grid;
+    mesh_init(&grid);
+    Err e;
+    EXPECT(!block_mesh(&grid, x, n, side, NULL, "test", NULL, &e), "%s", e.msg);
+    Geo G;
+    EXPECT(!geo_make(&G, "pipe { shape cylinder; point1 (-1 0.5 0.5); point2 (2 0.5 0.5); radius 0.3; "
+                         "infinite yes; flow inside; }"),
+           "geometry");
+    Mesh m;
+    CutStats st;
+    EXPECT(!cut(&grid, &G, -1, &m, &st), "cut");
+    char why[2100];
+    EXPECT(!check_grid(&m, why, sizeof why), "%s", why);
+    EXPECT(m.npatches == grid.npatches + 1, "npatches %d", m.npatches);
+    for (int p = 0; p < grid.npatches && p < m.npatches; p++) {
+        EXPECT(!strcmp(m.patches[p].name, grid.patches[p].name), "patch %d name %s", p, m.patches[p].name);
+        EXPECT(!strcmp(m.patches[p].type, grid.patches[p].type), "patch %d type %s", p, m.patches[p].type);
+    }
+    EXPECT(!strcmp(m.patches[m.npatches - 1].name, "pipe") && !strcmp(m.patches[m.npatches - 1].type, "wall"),
+           "pipe");
+    int l = mesh_patch(&m, "left"), r = mesh_patch(&m, "right");
+    EXPECT(l >= 0 && r >= 0 && m.patches[l].size == m.patches[r].size && m.patches[l].size > 0,
+           "cyclic sizes");
+    for (int i = 0; l >= 0 && r >= 0 && i < m.patches[l].size && i < m.patches[r].size; i++) {
+        int fl = m.patches[l].start + i, fr = m.patches[r].start + i;
+        int nl = m.face_off[fl + 1] - m.face_off[fl], nr = m.face_off[fr + 1] - m.face_off[fr];
+        EXPECT(nl == nr, "cyclic face %d: %d and %d points", i, nl, nr);
+        for (int q = 0; q < nl && nl == nr; q++) {
+            const double *a = m.points + 3 * m.face_idx[m.face_off[fl] + q];
+            const double *b = m.points + 3 * m.face_idx[m.face_off[fr] + (nr - q) % nr];
+            EXPECT(fabs(a[1] - b[1]) < 1e-15 && fabs(a[2] - b[2]) < 1e-15 && a[0] == 0 && b[0] == 1,
+                   "cyclic face %d point %d: (%g %g %g) vs (%g %g %g)", i, q, a[0], a[1], a[2], b[0], b[1],
+                   b[2]);
+        }
+        NEAR(m.face_area[3 * fl] + m.face_area[3 * fr], 0, 1e-15);
+    }
+    /* the wall normal of the pipe is radial, pointing into the solid */
+    int pp = m.npatches - 1;
+    for (int f = m.patches[pp].start; f < m.patches[pp].start + m.patches[pp].size; f++) {
+        const double *w = m.wall_normal + 3 * (f - m.ninternal), *C = m.face_centre + 3 * f;
+        double ry = C[1] - 0.5, rz = C[2] - 0.5, rl = sqrt(ry * ry + rz * rz);
+        EXPECT(fabs(w[0]) < 1e-12 && fabs(w[1] - ry / rl) < 1e-12 && fabs(w[2] - rz / rl) < 1e-12,
+               "normal of face %d", f);
+    }
+    for (int c = 0; c < m.ncells; c++) EXPECT(m.cell_parent[c] >= 0 && m.cell_parent[c] < 120, "parent");
+    EXPECT(m.cart.n[0] == 6 && m.cart.n[1] == 5 && m.cart.n[2] == 4, "cart");
+    mesh_free(&m);
+    geo_free(&G);
+
+    EXPECT(!geo_make(&G, "walls { shape sphere; centre (0.5 0.5 0.5); radius 0.2; }"), "geometry");
+    EXPECT(cut_mesh(&grid, &G.g, NULL, &m, &st, &e) == -1, "name clash accepted");
+    CONTAINS(e.msg, "geometryDict:");
+    CONTAINS(e.msg, "walls");
+    geo_free(&G);
+    EXPECT(!geo_make(&G, "all { shape sphere; centre (0.5 0.5 0.5); radius 5; }"), "geometry");
+    EXPECT(cut_mesh(&grid, &G.g, NULL, &m, &st, &e) == -1, "empty result accepted");
+    CONTAINS(e.msg, "no cell is left");
+    geo_free(&G);
+    mesh_free(&m);
+    Mesh plain;
+    mesh_init(&plain);
+    plain.ncells = 1;
+    EXPECT(!geo_make(&G, "b { shape sphere; centre (0.5 0.5 0.5); radius 0.2; }"), "geometry");
+    EXPECT(cut_mesh(&plain, &G.g, NULL, &m, &st, &e) == -1, "grid without cart accepted");
+    CONTAINS(e.msg, "Cartesian");
+    geo_free(&G);
+    mesh_free(&m);
+    mesh_free(&grid);
+    for (int k = 0; k < 3; k++) free(x[k]);
+}
+
+/* ---- random robustness ---- */
+
+static uint64_t rng_state = 88172645463325252ull;
+
+static double rnd(void)
+{
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 7;
+    rng_state ^= rng_state << 17;
+    return (double)(rng_state >> 11) / 9007199254740992.0;
+}
+
+static double rr(double a, double b)
+{
+    return a + (b - a) * rnd();
+}
+
+/* A random primitive (with a random transform) as dictionary text. */
+static int rand_prim(char *o, size_t n)
+{
+    double c[3] = {rr(0.1, 0.9), rr(0.1, 0.9), rr(0.1, 0.9)}, r = rr(0.05, 0.45);
+    int k = 0;
+    switch ((int)(rnd() * 6)) {
+    case 0:
+        k = snprintf(o, n, "shape sphere; centre (%.17g %.17g %.17g); radius %.17g;", c[0], c[1], c[2], r);
+        break;
+    case 1:
+        k = snprintf(o, n, "shape box; min (%.17g %.17g %.17g); max (%.17g %.17g %.17g);", c[0] - r,
+                     c[1] - rr(0.05, 0.4), c[2] - r, c[0] + rr(0.05, 0.4), c[1] + r, c[2] + rr(0.05, 0.4));
+        break;
+    case 2:
+        k = snprintf(o, n,
+                     "shape cylinder; point1 (%.17g %.17g %.17g); point2 (%.17g %.17g %.17g); radius %.17g;",
+                     c[0], c[1], c[2], rr(0, 1), rr(0, 1), rr(0, 1), 0.6 * r);
+        break;
+    case 3:
+        k = snprintf(o, n, "shape halfSpace; point (%.17g %.17g %.17g); normal (%.17g %.17g %.17g);", c[0],
+                     c[1], c[2], rr(-1, 1), rr(-1, 1), rr(-1, 1));
+        break;
+    case 4:
+        k = snprintf(o, n,
+                     "shape cone; point1 (%.17g %.17g %.17g); point2 (%.17g %.17g %.17g); radius1 %.17g; "
+                     "radius2 %.17g;",
+                     c[0], c[1], c[2], rr(0, 1), rr(0, 1), rr(0, 1), r, rnd() < 0.5 ? 0.0 : 0.3 * r);
+        break;
+    default:
+        k = snprintf(o, n,
+                     "shape torus; centre (%.17g %.17g %.17g); axis (%.17g %.17g %.17g); majorRadius %.17g; "
+                     "minorRadius %.17g;",
+                     c[0], c[1], c[2], rr(-1, 1), rr(-1, 1), rr(0.1, 1), r, r * rr(0.2, 0.6));
+        break;
+    }
+    if (rnd() < 0.4)
+        k += snprintf(o + k, n - (size_t)k,
+                      " rotate { axis (%.17g %.17g %.17g); angle %.17g; origin (0.5 0.5 0.5); }", rr(-1, 1),
+                      rr(-1, 1), rr(0.1, 1), rr(0, 360));
+    if (rnd() < 0.3)
+        k += snprintf(o + k, n - (size_t)k, " translate (%.17g %.17g 0);", rr(-0.1, 0.1), rr(-0.1, 0.1));
+    return k;
+}
+
+/* A random CSG tree of depth <= depth. */
+static int rand_shape(char *o, size_t n, int depth)
+{
+    if (depth == 0 || rnd() < 0.4) return rand_prim(o, n);
+    static const char *const ops[] = {"union", "intersection", "difference"};
+    int k = snprintf(o, n, "shape %s;", ops[(int)(rnd() * 3)]);
+    int m = 2 + (rnd() < 0.3);
+    for (int i = 0; i < m; i++) {
+        k += snprintf(o + k, n - (size_t)k, " op%d { ", i);
+        k += rand_shape(o + k, n - (size_t)k, depth - 1);
+        k += snprintf(o + k, n - (size_t)k, " }");
+    }
+    return k;
+}
+
+/* Is point x on a grid line (two coordinates on grid planes)? */
+static int on_grid_line(const CartGrid *g, const double *x)
+{
+    int on = 0;
+    for (int k = 0; k < 3; k++)
+        for (int i = 0; i <= g->n[k]; i++)
+            if (x[k] == g->x[k][i]) {
+                on++;
+                break;
+            }
+    return on >= 2;
+}
+
+/* Per Cartesian cell: the sum of the cut volumes of the two flow sides;
+   odd[parent] is set where a non-planar boundary loop was triangulated by
+   its own points (no fan centre off the grid lines): cut.c does that only
+   to keep face pyramids positive, judged for each side on its own, so
+   the two sides' surfaces may differ there. */
+static void add_parent_vol(const Mesh *m, double *pv, char *odd)
+{
+    int ngrid = 6;
+    for (int c = 0; c < m->ncells; c++) {
+        pv[m->cell_parent[c]] += m->cell_vol[c];
+        int nimm = 0, off = 0;
+        for (int i = m->cell_off[c]; i < m->cell_off[c + 1]; i++) {
+            int f = m->cell_faces[i];
+            if (f < m->ninternal || mesh_face_patch(m, f) < ngrid) continue;
+            nimm++;
+            for (int j = m->face_off[f]; j < m->face_off[f + 1]; j++)
+                if (!on_grid_line(&m->cart, m->points + 3 * m->face_idx[j])) off = 1;
+        }
+        if (nimm >= 2 && !off) odd[m->cell_parent[c]] = 1;
+    }
+}
+
+/* Is Cartesian cell ci one where both flow sides must add up exactly?
+   Not when a face has two diagonal fluid corners (the ambiguity rule
+   joins the fluid of either side), the fluid corners are a body diagonal
+   for either side (tunnel), or an edge's crossings are odd in number,
+   contradict its ends, or lie near a vertex (snapping). */
+static int regular_cell(const Geometry *g, const Mesh *grid, int ci)
+{
+    const CartGrid *cg = &grid->cart;
+    int ijk[3] = {ci % cg->n[0], (ci / cg->n[0]) % cg->n[1], ci / (cg->n[0] * cg->n[1])};
+    double p[8][3];
+    int f[8], mask = 0;
+    for (int q = 0; q < 8; q++) {
+        for (int k = 0; k < 3; k++) p[q][k] = cg->x[k][ijk[k] + ((q >> k) & 1)];
+        f[q] = geometry_fluid(g, p[q]);
+        mask |= f[q] << q;
+    }
+    for (int q = 0; q < 4; q++)
+        if (mask == ((1 << q) | (1 << (7 - q))) || (255 & ~mask) == ((1 << q) | (1 << (7 - q)))) return 0;
+    static const int fc[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                 {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+    for (int s = 0; s < 6; s++) {
+        const int *c = fc[s];
+        if (f[c[0]] == f[c[2]] && f[c[1]] == f[c[3]] && f[c[0]] != f[c[1]]) return 0;
+    }
+    for (int q = 0; q < 8; q++)
+        for (int k = 0; k < 3; k++) {
+            if ((q >> k) & 1) continue;
+            int w = q | (1 << k);
+            GeoCross cr[8];
+            int nc = geometry_crossings(g, p[q], p[w], cr, 8);
+            if (nc != (f[q] != f[w])) return 0;
+            for (int i = 0; i < nc && i < 8; i++)
+                if (cr[i].t < 1e-6 || cr[i].t > 1 - 1e-6) return 0;
+        }
+    return 1;
+}
+
+TEST(cut_random)
+{
+    /* CUT_RANDOM_CASES=n runs a longer study */
+    const char *env = getenv("CUT_RANDOM_CASES");
+    int ncase = env ? atoi(env) : 300, nfail = 0, nreg = 0, nirr = 0, ncells = 0;
+    double worst = 0;
+    char txt[8192], shape[7000], why[2100];
+    for (int it = 0; it < ncase && nfail < 3; it++) {
+        /* every fourth case in 2-D: one cell thick, empty front and back */
+        int nn = 8 + it % 5, twod = it % 4 == 3, n3[3] = {nn, nn, twod ? 1 : nn};
+        double lo[3] = {0, 0, 0}, hi[3] = {1, 1, twod ? 1.0 / nn : 1};
+        Mesh grid;
+        grid_box(&grid, n3, lo, hi, twod);
+        rand_shape(shape, sizeof shape, 2);
+        Geo G[2];
+        Mesh m[2];
+        CutStats st[2];
+        int ok[2] = {0, 0}, made[2] = {0, 0};
+        mesh_init(&m[0]);
+        mesh_init(&m[1]);
+        for (int side = 0; side < 2; side++) {
+            snprintf(txt, sizeof txt, "s { flow %s; %s }", side ? "outside" : "inside", shape);
+            if (geo_make(&G[side], txt)) {
+                printf("bad random geometry: %s\n", txt);
+                nfail++;
+                break;
+            }
+            made[side] = 1;
+            if (twod) geometry_flatten(&G[side].g, 2, 0.5 / nn);
+            CutOpts o;
+            cut_opts_default(&o);
+            Err e;
+            if (cut_mesh(&grid, &G[side].g, &o, &m[side], &st[side], &e)) {
+                /* the only acceptable failure: nothing left */
+                if (!strstr(e.msg, "no cell is left")) {
+                    printf("case %d side %d: %s\n  %s\n", it, side, e.msg, txt);
+                    nfail++;
+                }
+                continue;
+            }
+            if (check_grid(&m[side], why, sizeof why)) {
+                printf("case %d side %d: %s\n  %s\n", it, side, why, txt);
+                nfail++;
+                continue;
+            }
+            ok[side] = 1;
+            ncells += m[side].ncells;
+        }
+        if (nfail == 0 && made[0]) {
+            int nc = grid.ncells;
+            double *pv = MEM_NEW(double, nc);
+            char *odd = MEM_NEW(char, nc);
+            for (int side = 0; side < 2; side++)
+                if (ok[side]) add_parent_vol(&m[side], pv, odd);
+            double h3 = hi[2] / ((double)nn * nn * n3[2]);
+            for (int c = 0; c < nc; c++) {
+                if (odd[c] || !regular_cell(&G[0].g, &grid, c)) {
+                    nirr++;
+                    continue;
+                }
+                nreg++;
+                double err = fabs(pv[c] - h3) / h3;
+                if (err > worst) worst = err;
+                if (err > 1e-12 && nfail++ < 3)
+                    printf("case %d: cell %d: volumes add to %.17g of the cell\n  %s\n", it, c, pv[c] / h3,
+                           shape);
+            }
+            free(pv);
+            free(odd);
+        }
+        for (int side = 0; side < 2; side++) {
+            mesh_free(&m[side]);
+            if (made[side]) geo_free(&G[side]);
+        }
+        mesh_free(&grid);
+    }
+    printf("  %d random cases (a quarter 2-D), %d cells; volume identity on %d regular cells "
+           "(worst %.2e), %d irregular skipped\n",
+           ncase, ncells, nreg, worst, nirr);
+    EXPECT(nfail == 0, "%d failures", nfail);
+    EXPECT(nreg > ncase * 300, "only %d regular cells checked", nreg);
+}
+
+int main(void)
+{
+    RUN(cut_halfspace_exact);
+    RUN(cut_rotated_box_exact);
+    RUN(cut_on_grid_planes);
+    RUN(cut_sphere_convergence);
+    RUN(cut_disc_convergence);
+    RUN(cut_sphere_complement);
+    RUN(cut_sphere_shifted);
+    RUN(cut_degenerate);
+    RUN(cut_tunnel);
+    RUN(cut_patches);
+    RUN(cut_random);
+    return test_summary();
+}

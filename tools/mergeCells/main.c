@@ -1,0 +1,157 @@
+/*
+** mergeCells: merges small cut cells into face neighbours (spec §2.5,
+** thesis §3.3; the method is described in common/merge.h) and writes the
+** merged grid with its Cartesian parents, wall normals and the map from
+** the cut cells to the merged ones.  See doc/tools/mergeCells.md.
+**
+**   mergeCells [-case DIR] [-i DIR|-] [-o DIR|-] [-binary] [-gzip]
+**
+** Input and output default to constant/polyMesh of the case; "-" reads or
+** writes the stream form, so "blockGrid -o - | cutCells -i - -o - |
+** mergeCells -i -" works (with "-o -" the messages go to stderr).  The
+** optional system/mergeCellsDict is validated completely before the grid
+** is read, and the output is written atomically.
+*/
+#include "args.h"
+#include "dict.h"
+#include "err.h"
+#include "gridio.h"
+#include "io.h"
+#include "mem.h"
+#include "merge.h"
+#include "mesh.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const ArgOpt opts[] = {
+    {"-i", "DIR", "input cut grid, '-' = stream on stdin (default: constant/polyMesh)"},
+    {"-o", "DIR", "output polyMesh directory, '-' = stream to stdout (default: constant/polyMesh)"},
+    {"-binary", NULL, "write binary files (default: writeFormat of system/controlDict, else ascii)"},
+    {"-gzip", NULL, "gzip the files (default: writeCompression of system/controlDict, else off)"},
+    {0}};
+
+static const DictKey merge_keys[] = {
+    {"threshold", "0.5", "M_V: cells with V <= M_V x (parent Cartesian volume) are merged, in (0, 1]"},
+    {"criterion", "normal", "merge axis: normal = argmax |n_i|, normalSpacing = argmax |n_i h_i|"},
+    {"maxIter", "10", "rounds of re-merging clusters still below the bound (>= 0)"},
+    {NULL, NULL, NULL}};
+
+static const ArgDict dicts[] = {{"system/mergeCellsDict", merge_keys, "  optional; every keyword has a default\n"},
+                                {0}};
+
+static const ToolInfo tool = {"mergeCells", "merges small cut cells into face neighbours", opts, dicts, 0};
+
+static const char *const criteria[] = {"normal", "normalSpacing", NULL};
+
+static int bad_value(Err *e, const char *path, const Dict *d, const char *key, const char *what)
+{
+    const DictEntry *en = dict_find(d, key);
+    return err_set(e, path, en ? en->line : 0, "%s", what);
+}
+
+/* Options from the dictionary when it exists; defaults otherwise. */
+static int read_opts(const Args *a, MergeOpts *o, Err *e)
+{
+    merge_opts_default(o);
+    char *path = a->dict ? mem_strdup(a->dict) : args_case_path(a, "system/mergeCellsDict");
+    int rc = 0;
+    if (a->dict || io_exists(path) || io_exists_gz(path)) {
+        Dict *d = dict_read(path, e);
+        char msg[128];
+        rc = !d || dict_check_keys(d, merge_keys, e) || dict_scalar_or(d, "threshold", o->threshold, &o->threshold, e) ||
+             dict_choice_or(d, "criterion", criteria, o->criterion, &o->criterion, e) ||
+             dict_label_or(d, "maxIter", o->max_iter, &o->max_iter, e);
+        if (!rc && !(o->threshold > 0 && o->threshold <= 1)) {
+            snprintf(msg, sizeof msg, "threshold must be in (0, 1], found %g", o->threshold);
+            rc = bad_value(e, path, d, "threshold", msg);
+        }
+        if (!rc && o->max_iter < 0) {
+            snprintf(msg, sizeof msg, "maxIter must be >= 0, found %d", o->max_iter);
+            rc = bad_value(e, path, d, "maxIter", msg);
+        }
+        dict_free(d);
+    }
+    free(path);
+    return rc ? -1 : 0;
+}
+
+static void report(FILE *f, const MergeStats *s, const Mesh *m)
+{
+    double rel = s->vol_before != 0 ? (s->vol_after - s->vol_before) / s->vol_before : 0;
+    fprintf(f, "Merged cells\n");
+    fprintf(f, "  cells in:                %d\n", s->ncells_in);
+    fprintf(f, "  cells out:               %d\n", s->ncells_out);
+    fprintf(f, "  slaves (V <= M_V V_cart): %d\n", s->nslaves);
+    fprintf(f, "  clusters:                %d (%d round%s)\n", s->nclusters, s->niter, s->niter == 1 ? "" : "s");
+    fprintf(f, "  smallest volume ratio:   before %.6g, after %.6g (cell %d)\n", s->ratio_min_before,
+            s->ratio_min_after, s->ratio_min_cell);
+    fprintf(f, "  worst aspect ratio:      before %.6g, after %.6g\n", s->aspect_max_before, s->aspect_max_after);
+    fprintf(f, "  total volume:            before %.15g, after %.15g (relative difference %.3e)\n", s->vol_before,
+            s->vol_after, rel);
+    fprintf(f, "  unresolved cells:        %d\n", s->nunresolved);
+    for (int i = 0; i < s->nunresolved; i++) {
+        int c = s->unresolved[i];
+        double h[3];
+        double ratio = mesh_cell_spacing(m, c, h) == 0 ? m->cell_vol[c] / (h[0] * h[1] * h[2]) : NAN;
+        fprintf(f, "    cell %d (parent %d, volume ratio %.6g): %s\n", c, m->cell_parent[c], ratio,
+                merge_reason_name(s->reason[i]));
+    }
+    fprintf(f, "\n");
+}
+
+int main(int argc, char **argv)
+{
+    Args a;
+    Err e;
+    args_parse(argc, argv, &tool, &a);
+    if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
+    const char *in = args_get(&a, &tool, "-i");
+    const char *out = args_get(&a, &tool, "-o");
+    char *in_dir = in ? mem_strdup(in) : args_case_path(&a, "constant/polyMesh");
+    char *out_dir = out ? mem_strdup(out) : args_case_path(&a, "constant/polyMesh");
+    int to_stdout = !strcmp(out_dir, "-");
+    if (to_stdout) args_info_to_stderr(&a);
+    args_banner(&a, &tool);
+
+    MeshWriteOpts w = {0, 0};
+    if (gridio_control_format(a.case_dir, &w, &e)) err_die(&e);
+    if (args_get(&a, &tool, "-binary")) w.binary = 1;
+    if (args_get(&a, &tool, "-gzip")) w.gzip = 1;
+    MergeOpts mo;
+    if (read_opts(&a, &mo, &e)) err_die(&e);
+    fprintf(a.info, "Merging cells with V <= %g V_cart (criterion %s, maxIter %d)\n", mo.threshold,
+            criteria[mo.criterion], mo.max_iter);
+
+    fprintf(a.info, "Reading grid from %s\n\n", strcmp(in_dir, "-") ? in_dir : "stdin");
+    Mesh grid, m;
+    mesh_init(&grid);
+    if (mesh_read(&grid, in_dir, &e)) err_die(&e);
+    MergeStats st;
+    double t0 = args_wall(&a);
+    if (merge_mesh(&grid, &mo, &m, &st, &e)) {
+        Err e2;
+        err_set(&e2, strcmp(in_dir, "-") ? in_dir : "stdin", 0, "%s", e.msg);
+        err_die(&e2);
+    }
+    double dt = args_wall(&a) - t0;
+    fprintf(a.info, "Merged %d cells in %.3f s (%.3g cells/s)\n\n", grid.ncells, dt, dt > 0 ? grid.ncells / dt : 0.0);
+    report(a.info, &st, &m);
+    gridio_print_info(a.info, &m);
+
+    fprintf(a.info, "Writing polyMesh to %s (%s%s)\n\n", to_stdout ? "stdout" : out_dir, w.binary ? "binary" : "ascii",
+            w.gzip ? ", gzip" : "");
+    if (gridio_write(&m, out_dir, &w, &e)) err_die(&e);
+
+    log_exec(&a);
+    log_end(&a);
+    merge_stats_free(&st);
+    mesh_free(&m);
+    mesh_free(&grid);
+    free(in_dir);
+    free(out_dir);
+    args_free(&a);
+    return 0;
+}
