@@ -1115,6 +1115,10 @@ static int setup(Ctx *c, const Mesh *grid, Err *e)
     c->cellid = mem_alloc(sizeof(int) * (size_t)grid->ncells);
     tab_alloc(c, 1024);
     meshbuild_init(&c->b);
+    /* the cut grid is about the size of the block grid (fewer cells,
+       some extra points and faces on the boundary) */
+    meshbuild_reserve(&c->b, (size_t)grid->npoints + (size_t)grid->npoints / 8,
+                      (size_t)grid->nfaces + (size_t)grid->nfaces / 8, 4 * (size_t)grid->nfaces + (size_t)grid->nfaces / 4);
     for (int p = 0; p < grid->npatches; p++) {
         const Patch *P = &grid->patches[p];
         meshbuild_patch(&c->b, P->name, P->type, P->neighbour, P->groups);

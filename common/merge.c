@@ -656,6 +656,7 @@ static int assemble(Work *w, const int *newid, Mesh *out, Err *e)
     join_empty(w, &j);
     MeshBuild b;
     meshbuild_init(&b);
+    meshbuild_reserve(&b, (size_t)m->npoints, (size_t)m->nfaces, (size_t)m->face_off[m->nfaces]);
     for (int p = 0; p < m->npatches; p++) {
         const Patch *pa = &m->patches[p];
         meshbuild_patch(&b, pa->name, pa->type, pa->neighbour, pa->groups);

@@ -70,6 +70,18 @@ static void grow(void **p, int *cap, size_t need, size_t elem)
     *cap = (int)c;
 }
 
+void meshbuild_reserve(MeshBuild *b, size_t npoints, size_t nfaces, size_t nidx)
+{
+    int cap = b->face_cap;
+    grow((void **)&b->points, &b->point_cap, 3 * npoints, sizeof(double));
+    grow((void **)&b->face_off, &b->face_cap, nfaces + 1, sizeof(int));
+    if (b->face_cap != cap) {
+        b->owner = mem_realloc(b->owner, sizeof(int) * (size_t)b->face_cap);
+        b->other = mem_realloc(b->other, sizeof(int) * (size_t)b->face_cap);
+    }
+    grow((void **)&b->face_idx, &b->idx_cap, nidx, sizeof(int));
+}
+
 int meshbuild_patch(MeshBuild *b, const char *name, const char *type, const char *neighbour,
                     const char *groups)
 {

@@ -38,6 +38,12 @@ typedef struct MeshBuild {
 void meshbuild_init(MeshBuild *b);
 void meshbuild_free(MeshBuild *b);
 
+/* Reserves room for npoints points, nfaces faces and nidx face point
+   indices in all, so a builder that knows its size up front (a cutter
+   from its cell count, a merger from its input) avoids the copies of
+   geometric growth.  Estimates are fine: the arrays still grow past them. */
+void meshbuild_reserve(MeshBuild *b, size_t npoints, size_t nfaces, size_t nidx);
+
 /* Adds a patch (name, type, neighbourPatch or NULL, inGroups or NULL);
    returns its index.  Strings are copied. */
 int meshbuild_patch(MeshBuild *b, const char *name, const char *type,

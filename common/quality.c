@@ -95,6 +95,11 @@ void quality_cell(const Mesh *m, int c, const int empty[3], double *open, double
         surf += geom_norm(S);
     }
     *open = geom_norm(sum) / (surf + ROOTVSMALL);
+    *aspect = quality_aspect(mag, m->cell_vol[c], empty);
+}
+
+double quality_aspect(const double mag[3], double vol, const int empty[3])
+{
     double lo = HUGE_VAL, hi = -HUGE_VAL;
     int nd = 0;
     for (int k = 0; k < 3; k++)
@@ -105,11 +110,11 @@ void quality_cell(const Mesh *m, int c, const int empty[3], double *open, double
         }
     double ar = nd ? hi / (lo + ROOTVSMALL) : 1;
     if (nd == 3) {
-        double v = m->cell_vol[c] > ROOTVSMALL ? m->cell_vol[c] : ROOTVSMALL;
+        double v = vol > ROOTVSMALL ? vol : ROOTVSMALL;
         double a3 = (mag[0] + mag[1] + mag[2]) / 6 / pow(v, 2.0 / 3.0);
         if (a3 > ar) ar = a3;
     }
-    *aspect = ar;
+    return ar;
 }
 
 void quality_empty_dirs(const Mesh *m, int empty[3])
