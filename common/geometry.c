@@ -70,35 +70,35 @@ typedef struct Ev {
 } Ev;
 
 const DictKey geometry_keys[] = {
-    {"surfaces", "(required)", "one sub-dictionary per immersed surface; its name is the patch name"},
+    {"surfaces", NULL, "one sub-dictionary per immersed surface; its name is the patch name"},
     {NULL, NULL, NULL}
 };
 
 const DictKey geometry_surface_keys[] = {
     {"type", "wall", "patch type of the surface's boundary faces"},
     {"flow", "outside", "inside | outside: where the flow domain is"},
-    {"shape", "(required)", "halfSpace box sphere cylinder cone torus polygon stl cad union intersection difference"},
+    {"shape", NULL, "halfSpace box sphere cylinder cone torus polygon stl cad union intersection difference"},
     {NULL, NULL, NULL}
 };
 
 const DictKey geometry_shape_keys[] = {
-    {"shape", "(required)", "halfSpace box sphere cylinder cone torus polygon stl cad union intersection difference"},
-    {"point", "(required)", "halfSpace: a point on the plane"},
-    {"normal", "(required)", "halfSpace: outward normal (out of the solid)"},
-    {"min", "(required)", "box: min corner; polygon: start of the extrusion (default unbounded)"},
-    {"max", "(required)", "box: max corner; polygon: end of the extrusion (default unbounded)"},
-    {"centre", "(required)", "sphere, torus: centre"},
-    {"radius", "(required)", "sphere, cylinder: radius"},
-    {"point1", "(required)", "cylinder, cone: first axis end centre"},
-    {"point2", "(required)", "cylinder, cone: second axis end centre"},
+    {"shape", NULL, "halfSpace box sphere cylinder cone torus polygon stl cad union intersection difference"},
+    {"point", NULL, "halfSpace: a point on the plane"},
+    {"normal", NULL, "halfSpace: outward normal (out of the solid)"},
+    {"min", NULL, "box: min corner; polygon: start of the extrusion (default unbounded)"},
+    {"max", NULL, "box: max corner; polygon: end of the extrusion (default unbounded)"},
+    {"centre", NULL, "sphere, torus: centre"},
+    {"radius", NULL, "sphere, cylinder: radius"},
+    {"point1", NULL, "cylinder, cone: first axis end centre"},
+    {"point2", NULL, "cylinder, cone: second axis end centre"},
     {"infinite", "no", "cylinder: unbounded along its axis (no end caps)"},
-    {"radius1", "(required)", "cone: radius at point1 (0 allowed)"},
-    {"radius2", "(required)", "cone: radius at point2 (0 allowed)"},
-    {"axis", "(required)", "torus: axis direction; polygon: extrusion axis x, y or z"},
-    {"majorRadius", "(required)", "torus: centre to tube centre"},
-    {"minorRadius", "(required)", "torus: tube radius"},
-    {"points", "(required)", "polygon: ((u v) ...) in the plane normal to axis: (y z), (z x) or (x y)"},
-    {"file", "(required)", "stl, cad: file name relative to the case directory"},
+    {"radius1", NULL, "cone: radius at point1 (0 allowed)"},
+    {"radius2", NULL, "cone: radius at point2 (0 allowed)"},
+    {"axis", NULL, "torus: axis direction; polygon: extrusion axis x, y or z"},
+    {"majorRadius", NULL, "torus: centre to tube centre"},
+    {"minorRadius", NULL, "torus: tube radius"},
+    {"points", NULL, "polygon: ((u v) ...) in the plane normal to axis: (y z), (z x) or (x y)"},
+    {"file", NULL, "stl, cad: file name relative to the case directory"},
     {"allowOpen", "no", "stl, cad: cut a surface that is not closed (results are undefined near its holes)"},
     {"meshSize", "0", "cad: triangle size for the CAD surface triangulation (0: 1/50 of its diagonal)"},
     {"scale", "1", "transform: factor or (sx sy sz), about the origin, applied first"},
@@ -251,7 +251,7 @@ static int read_xf(const Dict *d, Xf *out, Err *e)
     }
     const Dict *r = dict_subdict_opt(d, "rotate");
     if (r) {
-        static const DictKey rk[] = {{"axis", "(required)", ""}, {"angle", "(required)", ""},
+        static const DictKey rk[] = {{"axis", NULL, ""}, {"angle", "(required)", ""},
                                      {"origin", "(0 0 0)", ""}, {NULL, NULL, NULL}};
         double ax[3], ang, o[3];
         static const double zero[3] = {0, 0, 0};

@@ -739,7 +739,7 @@ TEST(cut_random)
 {
     /* CUT_RANDOM_CASES=n runs a longer study */
     const char *env = getenv("CUT_RANDOM_CASES");
-    int ncase = env ? atoi(env) : 300, nfail = 0, nreg = 0, nirr = 0, ncells = 0;
+    int ncase = env ? atoi(env) : 500, nfail = 0, nreg = 0, nirr = 0, ncells = 0;
     double worst = 0;
     char txt[8192], shape[7000], why[2100];
     for (int it = 0; it < ncase && nfail < 3; it++) {

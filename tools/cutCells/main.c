@@ -37,7 +37,9 @@ static const DictKey cut_keys[] = {
     {"snapTolerance", "1e-08", "cut points closer than this fraction of an edge to a grid vertex move onto it"},
     {NULL, NULL, NULL}};
 
-static const ArgDict dicts[] = {{"system/geometryDict", geometry_keys, geometry_help_note},
+static const ArgDict dicts[] = {{"system/geometryDict", geometry_keys, NULL},
+                                {"system/geometryDict, each entry of surfaces", geometry_surface_keys, NULL},
+                                {"system/geometryDict, each shape", geometry_shape_keys, geometry_help_note},
                                 {"system/cutCellsDict", cut_keys, "  optional; every keyword has a default\n"},
                                 {0}};
 
