@@ -119,6 +119,9 @@ typedef struct Ctx {
     int64_t sv[3]; /* vertex strides */
     int64_t sc[3]; /* cell strides */
     char *cls;     /* per vertex: 1 fluid, 0 solid (2: snapping) */
+    char *onsurf;  /* per vertex: 1 when on the surface (within snap) */
+    char *full;    /* per Cartesian cell: 1 when whole (see full_cells) */
+    int64_t nfull;
     int *vpt;      /* per vertex: mesh point or -1 */
     int *cellid;   /* per Cartesian cell: new cell or -1 */
     CutPt *tab;
@@ -452,7 +455,10 @@ static void snap(Ctx *c)
         int64_t v = p->key / 3, w = v + c->sv[p->key % 3];
         if (c->cls[v] == 2 || c->cls[w] == 2) p->dead = 1;
     }
-    for (size_t k = 0; k < nl; k++) c->cls[list[k]] = 0;
+    for (size_t k = 0; k < nl; k++) {
+        c->cls[list[k]] = 0;
+        c->onsurf[list[k]] = 1;
+    }
     c->st->nsnap += (int)nl;
     for (size_t k = 0; k < nl; k++) {
         int ijk[3];
@@ -486,6 +492,7 @@ static void snap(Ctx *c)
         if (fabs(p->s - xs) < c->snap * h) {
             p->at = c->cls[v] ? 1 : 0;
             p->s = xs;
+            c->onsurf[c->cls[v] ? v + c->sv[p->key % 3] : v] = 1;
             c->st->nsnap++;
         }
     }
@@ -501,9 +508,9 @@ static void poly_add(Poly *p, int pt, int leaf, int cut)
     p->cut[p->n++] = (char)cut;
 }
 
-/* The polygon of the grid face normal to a with base vertex v0, normal +a
-   (empty when no corner is fluid). */
-static void face_poly(Ctx *c, int a, int64_t v0, Poly *p)
+/* The marching-squares polygon of the grid face normal to a with base
+   vertex v0, normal +a (empty when no corner is fluid). */
+static void face_poly_ms(Ctx *c, int a, int64_t v0, Poly *p)
 {
     int u = (a + 1) % 3, w = (a + 2) % 3;
     int64_t cv[4] = {v0, v0 + c->sv[u], v0 + c->sv[u] + c->sv[w], v0 + c->sv[w]};
@@ -520,6 +527,59 @@ static void face_poly(Ctx *c, int a, int64_t v0, Poly *p)
         }
     }
     while (p->n > 1 && p->pt[p->n - 1] == p->pt[0]) p->n--;
+}
+
+/* Which corners of the grid face normal to a with base vertex v0 are
+   points of polygon p (bit q for corner q); -1 when p has a point that is
+   no corner. */
+static int poly_corners(const Ctx *c, int a, int64_t v0, const Poly *p)
+{
+    int u = (a + 1) % 3, w = (a + 2) % 3, m = 0;
+    int64_t cv[4] = {v0, v0 + c->sv[u], v0 + c->sv[u] + c->sv[w], v0 + c->sv[w]};
+    for (int r = 0; r < p->n; r++) {
+        int q = 0;
+        while (q < 4 && !(c->vpt[cv[q]] >= 0 && p->pt[r] == c->vpt[cv[q]])) q++;
+        if (q == 4) return -1;
+        m |= 1 << q;
+    }
+    return m;
+}
+
+static int cell_has_fluid(const Ctx *c, int64_t ci)
+{
+    int i = (int)(ci % c->n[0]), j = (int)((ci / c->n[0]) % c->n[1]), k = (int)(ci / c->sc[2]);
+    int64_t v0 = i + c->nv[0] * (j + (int64_t)c->nv[1] * k);
+    for (int q = 0; q < 8; q++)
+        if (c->cls[v0 + (q & 1) + ((q >> 1) & 1) * c->sv[1] + (q >> 2) * c->sv[2]] == 1) return 1;
+    return 0;
+}
+
+/* Does the grid face normal to a with base vertex v0 lie between a whole
+   cell and a cell with no fluid corner, another whole cell or the box
+   side (then it is the whole face)?  Between a whole cell and a cut cell
+   it is the marching-squares polygon, and the whole cell closes the rest
+   of the face with a wall (whole_cell_walls). */
+static int face_whole(const Ctx *c, int a, int64_t v0)
+{
+    if (!c->nfull) return 0;
+    int ijk[3];
+    vertex_ijk(c, v0, ijk);
+    int64_t ci = ijk[0] + c->n[0] * (ijk[1] + (int64_t)c->n[1] * ijk[2]);
+    int up = ijk[a] < c->n[a] ? (c->full[ci] ? 2 : cell_has_fluid(c, ci)) : 0;
+    int dn = ijk[a] > 0 ? (c->full[ci - c->sc[a]] ? 2 : cell_has_fluid(c, ci - c->sc[a])) : 0;
+    return (up == 2 || dn == 2) && up != 1 && dn != 1;
+}
+
+/* The polygon of a grid face: marching squares, or the whole face
+   (face_whole). */
+static void face_poly(Ctx *c, int a, int64_t v0, Poly *p)
+{
+    face_poly_ms(c, a, v0, p);
+    if (!face_whole(c, a, v0) || poly_corners(c, a, v0, p) == 15) return;
+    int u = (a + 1) % 3, w = (a + 2) % 3;
+    int64_t cv[4] = {v0, v0 + c->sv[u], v0 + c->sv[u] + c->sv[w], v0 + c->sv[w]};
+    p->n = 0;
+    for (int q = 0; q < 4; q++) poly_add(p, vertex_point(c, cv[q]), -1, 0);
 }
 
 /* ---- step 5: boundary loops ---- */
@@ -976,6 +1036,151 @@ static int fluid_mask(const Ctx *c, int64_t v0)
     return m;
 }
 
+/* Whole cells [our rule, doc/theory.md §6].  Snapping makes vertices on
+   the surface solid, which is right where the fluid is concave there
+   (flow round a box: the cells inside the box next to its faces and edges
+   vanish) but chamfers the fluid's convex edges and corners when they
+   lie on grid lines (flow inside a grid-aligned box: the cell in a corner
+   would keep only the corner piece at its one fluid vertex).  A cell whose
+   corners are all fluid or on the surface, at least one of each, is
+   therefore kept whole: its faces are the whole grid faces, and those
+   next to a cell with no fluid corner are boundary faces of the surface.
+   Consistency: a face between a whole cell and a cut cell must be the
+   same polygon for both, so a whole cell whose face towards a cut cell is
+   not whole under marching squares is cut after all; repeated until
+   nothing changes.  Before that, solid vertices lying on the surface but
+   met by no grid line crossing (a box corner on a grid vertex) are found
+   by testing the point snap x the way towards each fluid corner of their
+   cells. */
+static void surface_corners(Ctx *c)
+{
+    for (int k = 0; k < c->n[2]; k++)
+        for (int j = 0; j < c->n[1]; j++)
+            for (int i = 0; i < c->n[0]; i++) {
+                int64_t v0 = i + c->nv[0] * (j + (int64_t)c->nv[1] * k), cv[8];
+                int nf = 0, nb = 0, ns;
+                for (int q = 0; q < 8; q++) {
+                    cv[q] = cell_corner(c, v0, q);
+                    nf += c->cls[cv[q]] == 1;
+                    nb += !c->cls[cv[q]] && c->onsurf[cv[q]];
+                }
+                ns = 8 - nf - nb;
+                if (!nf || !nb || !ns) continue;
+                for (int q = 0; q < 8; q++) {
+                    if (c->cls[cv[q]] || c->onsurf[cv[q]]) continue;
+                    const int ijk[3] = {i + (q & 1), j + ((q >> 1) & 1), k + (q >> 2)};
+                    for (int r = 0; r < 8 && !c->onsurf[cv[q]]; r++) {
+                        if (c->cls[cv[r]] != 1) continue;
+                        const int rk[3] = {i + (r & 1), j + ((r >> 1) & 1), k + (r >> 2)};
+                        double x[3];
+                        for (int a = 0; a < 3; a++)
+                            x[a] = c->x[a][ijk[a]] + c->snap * (c->x[a][rk[a]] - c->x[a][ijk[a]]);
+                        if (geometry_fluid(c->g, x)) c->onsurf[cv[q]] = 1;
+                    }
+                }
+            }
+}
+
+static int whole_candidate(const Ctx *c, int64_t v0)
+{
+    int nf = 0, nb = 0;
+    for (int q = 0; q < 8; q++) {
+        int64_t v = cell_corner(c, v0, q);
+        if (c->cls[v] == 1) nf++;
+        else if (c->onsurf[v]) nb++;
+        else return 0;
+    }
+    return nf && nb;
+}
+
+static void full_cells(Ctx *c)
+{
+    if (!(c->snap > 0)) return;
+    surface_corners(c);
+    for (int k = 0; k < c->n[2]; k++)
+        for (int j = 0; j < c->n[1]; j++)
+            for (int i = 0; i < c->n[0]; i++)
+                if (whole_candidate(c, cell_base(c, i, j, k))) {
+                    c->full[i + c->n[0] * (j + (int64_t)c->n[1] * k)] = 1;
+                    c->nfull++;
+                }
+    for (int changed = 1; changed && c->nfull;) {
+        changed = 0;
+        for (int k = 0; k < c->n[2]; k++)
+            for (int j = 0; j < c->n[1]; j++)
+                for (int i = 0; i < c->n[0]; i++) {
+                    int64_t ci = i + c->n[0] * (j + (int64_t)c->n[1] * k), v0 = cell_base(c, i, j, k);
+                    if (!c->full[ci]) continue;
+                    const int ijk[3] = {i, j, k};
+                    for (int a = 0; a < 3 && c->full[ci]; a++)
+                        for (int hi = 0; hi < 2 && c->full[ci]; hi++) {
+                            int nb = ijk[a] + (hi ? 1 : -1);
+                            if (nb < 0 || nb >= c->n[a]) continue;
+                            int64_t cn = ci + (hi ? 1 : -1) * c->sc[a];
+                            int64_t vn = v0 + (hi ? 1 : -1) * c->sv[a];
+                            if (c->full[cn] || !fluid_mask(c, vn)) continue;
+                            Poly p;
+                            int64_t fv = hi ? v0 + c->sv[a] : v0;
+                            face_poly_ms(c, a, fv, &p);
+                            if (poly_corners(c, a, fv, &p) < 0) {
+                                c->full[ci] = 0;
+                                c->nfull--;
+                                changed = 1;
+                            }
+                        }
+                }
+    }
+}
+
+/* Adds a wall of cell `cell` on the grid face normal to a with base v0:
+   the corners in mask (bit q: corner q), in the face's order, reversed
+   when rev (a lower face of the cell). */
+static void corner_wall(Ctx *c, int a, int64_t v0, int mask, int rev, int cell)
+{
+    int u = (a + 1) % 3, w = (a + 2) % 3, pt[4], lf[4] = {-1, -1, -1, -1}, n = 0;
+    int64_t cv[4] = {v0, v0 + c->sv[u], v0 + c->sv[u] + c->sv[w], v0 + c->sv[w]};
+    for (int q = 0; q < 4; q++)
+        if (mask & (1 << q)) pt[n++] = vertex_point(c, cv[q]);
+    if (n < 3) return;
+    if (rev)
+        for (int l = 0, r = n - 1; l < r; l++, r--) {
+            int t = pt[l];
+            pt[l] = pt[r];
+            pt[r] = t;
+        }
+    add_wall(c, pt, lf, n, cell);
+}
+
+/* The walls of a whole cell: its faces towards cells with no fluid
+   corner, and on its faces towards cut cells, the part of the face the
+   cut cell's marching-squares polygon leaves out (a corner triangle, or
+   the whole face when that polygon is empty; full_cells made sure the
+   polygon's points are face corners). */
+static void whole_cell_walls(Ctx *c, const int ijk[3], int64_t ci, int64_t v0, int cell)
+{
+    for (int a = 0; a < 3; a++)
+        for (int hi = 0; hi < 2; hi++) {
+            int nb = ijk[a] + (hi ? 1 : -1);
+            if (nb < 0 || nb >= c->n[a]) continue;
+            int64_t cn = ci + (hi ? 1 : -1) * c->sc[a], fv = hi ? v0 + c->sv[a] : v0;
+            if (c->cellid[cn] < 0) {
+                corner_wall(c, a, fv, 15, !hi, cell);
+                continue;
+            }
+            if (c->full[cn]) continue;
+            Poly p;
+            face_poly_ms(c, a, fv, &p);
+            int m = poly_corners(c, a, fv, &p);
+            if (m == 15 || m < 0) continue;
+            if (p.n < 3) {
+                corner_wall(c, a, fv, 15, !hi, cell);
+                continue;
+            }
+            for (int q = 0; q < 4; q++)   /* the corner p skips, with its two neighbours */
+                if (!(m & (1 << q))) corner_wall(c, a, fv, (1 << q) | (1 << ((q + 1) & 3)) | (1 << ((q + 3) & 3)), !hi, cell);
+        }
+}
+
 static void boundary_faces(Ctx *c, Poly *pl, Poly *pu, int cell, int mask)
 {
     Seg s[MAXS];
@@ -1022,13 +1227,18 @@ static void cell_faces(Ctx *c, int i, int j, int k)
     double vol = 1;
     for (int a = 0; a < 3; a++) {
         face_poly(c, a, v0 + c->sv[a], &pu[a]);
-        if (pu[a].n >= 3 && ijk[a] + 1 < c->n[a])
+        if (pu[a].n >= 3 && ijk[a] + 1 < c->n[a] && c->cellid[ci + c->sc[a]] >= 0)
             meshbuild_face(&c->b, pu[a].pt, pu[a].n, cell, c->cellid[ci + c->sc[a]], 0);
         c->vref[a] = (c->x[a][ijk[a]] + c->x[a][ijk[a] + 1]) / 2;
         vol *= c->x[a][ijk[a] + 1] - c->x[a][ijk[a]];
     }
     c->cvol[cell] = vol;
     if (mask == 255) return;
+    if (c->full[ci]) {
+        whole_cell_walls(c, ijk, ci, v0, cell);
+        c->cvol[cell] = vol;
+        return;
+    }
     c->vacc = 0;
     for (int a = 0; a < 3; a++) {
         face_poly(c, a, v0, &pl[a]);
@@ -1110,6 +1320,8 @@ static int setup(Ctx *c, const Mesh *grid, Err *e)
     c->sc[2] = (int64_t)c->n[0] * c->n[1];
     int64_t nv = c->sv[2] * c->nv[2];
     c->cls = mem_alloc((size_t)nv);
+    c->onsurf = mem_calloc((size_t)nv, 1);
+    c->full = mem_calloc((size_t)grid->ncells, 1);
     c->vpt = mem_alloc(sizeof(int) * (size_t)nv);
     memset(c->vpt, 0xff, sizeof(int) * (size_t)nv);
     c->cellid = mem_alloc(sizeof(int) * (size_t)grid->ncells);
@@ -1132,6 +1344,8 @@ static int setup(Ctx *c, const Mesh *grid, Err *e)
 static void ctx_free(Ctx *c)
 {
     free(c->cls);
+    free(c->onsurf);
+    free(c->full);
     free(c->vpt);
     free(c->cellid);
     free(c->tab);
@@ -1215,6 +1429,7 @@ int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o, Mesh *out, C
     classify(&c);
     cut_lines(&c);
     snap(&c);
+    full_cells(&c);
     int *parent;
     int nc = number_cells(&c, &parent);
     if (nc == 0) {
