@@ -28,9 +28,9 @@
 ** crossing is found on copies of the edge moved across it (offset_cut).
 ** Afterwards each fluid corner keeps a corner piece at least snap x (edge)
 ** wide, so no face or cell has zero size.  Surfaces on grid planes are so
-** cut exactly where the fluid side is concave (flow round a box); a fluid
-** region's convex edges on grid lines (flow inside a grid-aligned box) are
-** chamfered, since their vertices are solid: make such walls box sides.
+** cut exactly where the fluid side is concave (flow round a box); where it
+** is convex (flow inside a grid-aligned box) the cells along the edges are
+** kept whole instead of chamfered (step 6, "Whole cells").
 **
 ** Faces.  A grid face polygon is walked round its corners in the order
 ** base, +u, +u+v, +v (normal +a, with u = a+1, v = a+2 cyclically),
