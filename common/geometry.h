@@ -133,6 +133,16 @@ int geometry_nearest_leaf(const Geometry *g, const double x[3]);
    section times (hi - lo) along the flat axis. */
 double geometry_exact_volume(const Geometry *g, const double lo[3], const double hi[3]);
 
+/* Points spread evenly over the flow domain's boundary, about h apart:
+   every leaf's surface is sampled (shape_sample for primitives; the
+   triangles, subdivided and relaxed, for STL and CAD leaves), mapped to
+   global coordinates, and kept where it lies on the domain boundary (the
+   domain changes across it).  Returns the count; *x (3 per point), *n
+   (the domain's outward unit normal there, into the solid) and *leaf are
+   new arrays.  In 2-D (flattened) the section's boundary is sampled in
+   the mid-plane.  Used by voronoiGrid (seeds.h). */
+int geometry_sample(const Geometry *g, double h, double **x, double **n, int **leaf);
+
 /* Patch name and type of a leaf. */
 const char *geometry_leaf_patch(const Geometry *g, int leaf);
 

@@ -111,6 +111,17 @@ void shape_normal(const Shape *s, const double x[3], double n[3]);
    cylinder and torus; for cones and polygons too). */
 void shape_closest(const Shape *s, const double x[3], double c[3]);
 
+/* Points spread evenly over the surface, about h apart, from a
+   structured parametrisation (latitude rings on a sphere, rings and
+   generators on cylinders and cones, a grid on each box face and
+   polygon side, a torus grid); edges and corners of boxes, cylinders,
+   cones and polygons get points of their own, exactly on them, so a
+   Voronoi grid can reproduce them (thesis Fig. 3.16).  Returns the count;
+   *x and *n (outward unit normals; at an edge or corner point the mean of
+   the faces' normals, normalised) are new arrays of 3 per point.
+   Unbounded shapes are sampled inside the box lo..hi only. */
+int shape_sample(const Shape *s, double h, const double lo[3], const double hi[3], double **x, double **n);
+
 /* Axis-aligned bounding box (infinite extents as +-INFINITY). */
 void shape_bounds(const Shape *s, double lo[3], double hi[3]);
 
