@@ -6,7 +6,8 @@
 ** (path halving, union by size); each root holds the cluster's volume,
 ** first moment (sum of V x centroid) and largest member, and a circular
 ** linked list (`next`) threads the members so a cluster's faces can be
-** walked without building lists.  Merging runs in rounds.  A round takes
+** walked without building lists.  (Cells' own volumes are kept in the
+** working copy's cell_vol; there are no cell centres: cmom holds them.)  Merging runs in rounds.  A round takes
 ** the clusters below the bound (volume <= M_V x the Cartesian volume of
 ** their largest member) in order of increasing volume ratio (then cell
 ** number, so the result is deterministic) and lets each, if it is still
@@ -42,24 +43,35 @@
 **   unions with skewness <= 4 was tried and dropped: it steered slaves
 **   away from their natural masters into clusters that later had no
 **   sound neighbour, 24 unresolved cells in a 96^3 sphere grid against
-**   none, for 6% fewer skewed faces.)
+**   none, for 6% fewer skewed faces.)  Skewness is dealt with after the
+**   volume rounds instead, by the quality pass ("quality pass" below).
+**
+** Cost.  Cut cells are a thin layer of a large grid, so the work avoids
+** touching the regular cells' data: a cell that is its whole parent
+** Cartesian cell (is_regular) gets the box's volume and centroid, face
+** geometry is computed on first use (face_geo), the statistics come from
+** the clusters (no output geometry), and the output is assembled directly
+** in polyMesh order (what meshbuild would give, without its copies):
+** the input is in that order already, so the kept internal faces need a
+** counting sort on the new owner and a sort on the neighbour inside each
+** owner's short run only.
 **
 ** Output.  The merged cell is the union polyhedron: internal faces with
 ** both cells in one cluster are dropped, every other face is kept with
-** its points and orientation (meshbuild flips it when the renumbering
-** swaps owner and neighbour), except that a 2-D cluster's empty faces
-** on each side are joined into one polygon (see "empty faces" below).
-** Output cells are numbered in order of their smallest member, so the
-** numbering stays close to Cartesian order.  cell_parent is the largest
-** member's, wall_normal follows the boundary faces through meshbuild's
-** face map, merge_map records each input cell's output cell.  Everything
+** its points and orientation (reversed when the renumbering swaps owner
+** and neighbour), except that a 2-D cluster's empty faces on each side
+** are joined into one polygon (see "empty faces" below).  Output cells
+** are numbered in order of their smallest member, so the numbering stays
+** close to Cartesian order.  cell_parent is the largest member's,
+** wall_normal follows the boundary faces (they keep their order), points
+** no face uses any more are dropped (the others keep their order),
+** merge_map records each input cell's output cell.  Everything
 ** is linear in the mesh size except the picks, which walk the faces of
 ** slave clusters and their candidates only.
 */
 #include "merge.h"
 #include "geom.h"
 #include "mem.h"
-#include "meshbuild.h"
 #include "quality.h"
 
 #include <math.h>
@@ -74,6 +86,7 @@ void merge_opts_default(MergeOpts *o)
     o->threshold = 0.5;
     o->criterion = MERGE_NORMAL;
     o->max_iter = 10;
+    o->max_skewness = QUALITY_SKEW_HIGH;
 }
 
 const char *merge_reason_name(int reason)
@@ -82,6 +95,7 @@ const char *merge_reason_name(int reason)
     case MERGE_OK: return "ok";
     case MERGE_NO_NEIGHBOUR: return "no neighbour to merge with (none, or none giving a sound cell)";
     case MERGE_ITER_LIMIT: return "still below the bound after maxIter rounds";
+    case MERGE_SKEWNESS: return "a face skewness above maxSkewness that no merge lowers";
     default: return "unknown";
     }
 }
@@ -101,7 +115,11 @@ typedef struct Cand {
 } Cand;
 
 typedef struct Work {
-    const Mesh *m;          /* input with cell faces and geometry */
+    const Mesh *m;          /* input with cell faces and lazy geometry (below) */
+    Mesh *g;                /* the same, writable: its cell_vol, cell_faces */
+    int *fslot;             /* per face: 1 + its slot in fgeo, 0 before first use */
+    double *fgeo;           /* per slot: area vector and centroid (6) */
+    size_t nslot, slot_cap;
     const MergeOpts *o;
     int empty[3];           /* empty (2-D) directions */
     double *vcart;          /* parent volume per cell, 0 without a parent */
@@ -110,6 +128,8 @@ typedef struct Work {
     double *cmom;           /* 3 per cell: sum of V x centroid, at roots */
     int *big;               /* largest member, at roots */
     char *empty_patch;      /* per patch: 1 for type empty */
+    char *skip_patch;       /* per patch: 1 for empty and cyclic (not skew-checked) */
+    char *reg;              /* per cell: 1 for a whole Cartesian cell */
     Cand *cand;
     int ncand, cand_cap;
     int *order;             /* candidate roots in order of preference */
@@ -146,6 +166,40 @@ static void unite(Work *w, int a, int b)
     int t = w->next[a];
     w->next[a] = w->next[b];
     w->next[b] = t;
+}
+
+/* Face f's area vector and centroid (6 values), computed on first use
+   and stored compactly: the merge looks at the faces of cut cells and
+   their neighbours only, so most of a large grid's faces are never
+   touched, and arrays indexed by face would be faulted in whole anyway
+   (their pages hold thousands of faces).  The pointer is valid until the
+   next call. */
+static const double *face_geo(Work *w, int f)
+{
+    if (w->fslot[f]) return w->fgeo + 6 * (size_t)(w->fslot[f] - 1);
+    const Mesh *m = w->m;
+    mem_grow((void **)&w->fgeo, &w->slot_cap, 6 * (w->nslot + 1), sizeof(double));
+    double *g = w->fgeo + 6 * w->nslot++;
+    w->fslot[f] = (int)w->nslot;
+    geom_face(m->points, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], g, g + 3);
+    return g;
+}
+
+/* Skewness of face f (quality.h's, OpenFOAM's) between cell centres cown
+   and cnei, or of a boundary face when cnei is NULL: the quality
+   functions read a mesh's per-face arrays, so they get a one-face view
+   of f with its geometry. */
+static double face_skew(Work *w, int f, const double *cown, const double *cnei)
+{
+    const Mesh *m = w->m;
+    double SC[6];
+    memcpy(SC, face_geo(w, f), sizeof SC);
+    int off[2] = {m->face_off[f], m->face_off[f + 1]};
+    Mesh one = *m;
+    one.face_off = off;
+    one.face_area = SC;
+    one.face_centre = SC + 3;
+    return cnei ? quality_skewness(&one, 0, cown, cnei) : quality_boundary_skewness(&one, 0, cown);
 }
 
 /* Parent Cartesian cell of c: lower and upper corner; -1 without one. */
@@ -193,7 +247,8 @@ static int below(const Work *w, int r)
 static void cluster_normal(Work *w, int r, double n[3])
 {
     const Mesh *m = w->m;
-    double lo[3], hi[3], cen[3] = {0, 0, 0};
+    double lo[3], hi[3];
+    const double *cen = w->cmom + 3 * (size_t)r;   /* sum of V x centroid */
     n[0] = n[1] = n[2] = 0;
     int c = r;
     do {
@@ -201,9 +256,9 @@ static void cluster_normal(Work *w, int r, double n[3])
             for (int i = m->cell_off[c]; i < m->cell_off[c + 1]; i++) {
                 int f = m->cell_faces[i];
                 if (f < m->ninternal || face_on_box(m, f, lo, hi)) continue;
-                for (int k = 0; k < 3; k++) n[k] -= m->face_area[3 * (size_t)f + k];
+                const double *S = face_geo(w, f);
+                for (int k = 0; k < 3; k++) n[k] -= S[k];
             }
-        for (int k = 0; k < 3; k++) cen[k] += m->cell_vol[c] * m->cell_centre[3 * (size_t)c + k];
         c = w->next[c];
     } while (c != r);
     for (int k = 0; k < 3; k++)
@@ -269,7 +324,7 @@ static void collect(Work *w, int r, int axis, int side)
             if (ro == find(w, r)) continue;
             if (axis >= 0 && !face_in_plane(m, f, axis, side ? hi[axis] : lo[axis], hi[axis] - lo[axis]))
                 continue;
-            add_cand(w, ro, geom_norm(m->face_area + 3 * (size_t)f));
+            add_cand(w, ro, geom_norm(face_geo(w, f)));
         }
         c = w->next[c];
     } while (c != r);
@@ -324,7 +379,7 @@ static int sound_union(Work *w, int r, int t)
                     int p = mesh_face_patch(m, f);
                     if (p >= 0 && w->empty_patch[p]) continue;
                 }
-                const double *S = m->face_area + 3 * (size_t)f, *Cf = m->face_centre + 3 * (size_t)f;
+                const double *S = face_geo(w, f), *Cf = S + 3;
                 double d[3] = {Cf[0] - C[0], Cf[1] - C[1], Cf[2] - C[2]};
                 if (!((own ? 1 : -1) * geom_dot(d, S) > 0)) return 0;
             }
@@ -396,55 +451,438 @@ static int merge_rounds(Work *w, char *stuck)
     return niter;
 }
 
-/* The input's cell faces and geometry, computed into a shallow copy so
-   in stays untouched. */
+/* ---- quality pass ----
+   After the volume rounds a cluster can still have a face whose OpenFOAM
+   skewness exceeds maxSkewness: a small cut piece's boundary face lies
+   far, along the face, from the merged cell's centroid.  Skewness of a
+   face depends only on the centroids of its two cells (one for a boundary
+   face), so merging a set of clusters changes exactly the faces of the
+   union: the pass evaluates those, with the union's centroid from the
+   members' volumes and first moments, for the union of the worst cluster
+   r with each face neighbour t, and takes the sound union (every face
+   pyramid on its centroid positive, as sound_union) with the smallest
+   maximum.  When no such union lowers r's maximum it also tries each t
+   with each neighbour u of r + t (around a curved wall the union with one
+   neighbour often puts the centroid behind a wall face, and a third
+   cluster brings it back).  The merge is made when it lowers r's
+   maximum.  (Trying the triples whenever the best pair stayed above the
+   limit was worse: the larger clusters left 72 cells above it in a 64^3
+   sphere grid, against 6.)  Empty faces are left out (a merged 2-D
+   cell's joined empty face has its centroid over the cell's, skewness
+   0), and so are faces of cyclic patches (measured against a partner cell
+   the merge does not see). */
+
+enum { SET_MAX = 3 };
+
+typedef struct Set {
+    int root[SET_MAX], n;
+    double C[3];   /* centroid of the union */
+} Set;
+
+static int in_set(const Set *s, int r)
+{
+    for (int i = 0; i < s->n; i++)
+        if (s->root[i] == r) return 1;
+    return 0;
+}
+
+static void set_make(const Work *w, Set *s, int n, const int *roots)
+{
+    double V = 0, M[3] = {0, 0, 0};
+    s->n = n;
+    for (int i = 0; i < n; i++) {
+        s->root[i] = roots[i];
+        V += w->cvol[roots[i]];
+        for (int k = 0; k < 3; k++) M[k] += w->cmom[3 * (size_t)roots[i] + k];
+    }
+    for (int k = 0; k < 3; k++) s->C[k] = M[k] / V;
+}
+
+static void centroid(const Work *w, int r, double C[3])
+{
+    for (int k = 0; k < 3; k++) C[k] = w->cmom[3 * (size_t)r + k] / w->cvol[r];
+}
+
+/* Maximum skewness over the faces of the union s; with sound, returns -1
+   instead when a face pyramid on the union's centroid is not positive
+   (sound_union's test).  Stops at the first face reaching cut (the
+   caller's best so far), returning a value >= cut. */
+static double set_skew(Work *w, const Set *s, int sound, double cut)
+{
+    const Mesh *m = w->m;
+    double smax = 0, Co[3];
+    for (int i = 0; i < s->n; i++) {
+        int c = s->root[i];
+        do {
+            for (int q = m->cell_off[c]; q < m->cell_off[c + 1]; q++) {
+                int f = m->cell_faces[q], own = m->owner[f] == c, ro = -1;
+                if (f < m->ninternal) {
+                    ro = find(w, own ? m->neighbour[f] : m->owner[f]);
+                    if (in_set(s, ro)) continue;
+                } else {
+                    int p = mesh_face_patch(m, f);
+                    if (p >= 0 && w->skip_patch[p]) continue;
+                }
+                if (sound) {   /* the cheap test first: most unions that fail it fail early */
+                    const double *S = face_geo(w, f), *Cf = S + 3;
+                    double d[3] = {Cf[0] - s->C[0], Cf[1] - s->C[1], Cf[2] - s->C[2]};
+                    if (!((own ? 1 : -1) * geom_dot(d, S) > 0)) return -1;
+                }
+                double sk;
+                if (ro >= 0) {
+                    centroid(w, ro, Co);
+                    sk = own ? face_skew(w, f, s->C, Co) : face_skew(w, f, Co, s->C);
+                } else {
+                    sk = face_skew(w, f, s->C, NULL);
+                }
+                if (sk > smax) smax = sk;
+                if (smax >= cut) return smax;
+            }
+            c = w->next[c];
+        } while (c != s->root[i]);
+    }
+    return smax;
+}
+
+static double cluster_skew(Work *w, int r)
+{
+    Set s;
+    set_make(w, &s, 1, &r);
+    return set_skew(w, &s, 0, HUGE_VAL);
+}
+
+/* Adds the neighbour clusters of the union s to w->cand. */
+static void collect_set(Work *w, const Set *s)
+{
+    const Mesh *m = w->m;
+    w->ncand = 0;
+    for (int i = 0; i < s->n; i++) {
+        int c = s->root[i];
+        do {
+            for (int q = m->cell_off[c]; q < m->cell_off[c + 1]; q++) {
+                int f = m->cell_faces[q];
+                if (f >= m->ninternal) continue;
+                int ro = find(w, m->owner[f] == c ? m->neighbour[f] : m->owner[f]);
+                if (!in_set(s, ro)) add_cand(w, ro, 0);
+            }
+            c = w->next[c];
+        } while (c != s->root[i]);
+    }
+}
+
+/* The union of cluster r with a neighbour whose maximum face skewness is
+   lowest among the sound ones (*best; HUGE_VAL when none), or, when no
+   such pair gets below cur (r's own maximum), the union with two; ties go
+   to the first found, in the order the neighbours are met. */
+static int choose_skew(Work *w, int r, double cur, Set *bs, double *best)
+{
+    Set s;
+    set_make(w, &s, 1, &r);
+    collect_set(w, &s);
+    int n1 = w->ncand;
+    int *first = mem_alloc(sizeof(int) * ((size_t)n1 + 1));
+    for (int i = 0; i < n1; i++) first[i] = w->cand[i].root;
+    *best = HUGE_VAL;
+    for (int i = 0; i < n1; i++) {
+        int two[2] = {r, first[i]};
+        set_make(w, &s, 2, two);
+        double sk = set_skew(w, &s, 1, *best);
+        if (sk >= 0 && sk < *best) *best = sk, *bs = s;
+    }
+    for (int i = 0; i < n1 && !(*best < cur); i++) {
+        int three[3] = {r, first[i], -1};
+        set_make(w, &s, 2, three);
+        collect_set(w, &s);
+        for (int k = 0; k < w->ncand; k++) {
+            three[2] = w->cand[k].root;
+            set_make(w, &s, 3, three);
+            double sk = set_skew(w, &s, 1, *best);
+            if (sk >= 0 && sk < *best) *best = sk, *bs = s;
+        }
+    }
+    free(first);
+    return *best < HUGE_VAL;
+}
+
+/* Whether cluster r is worth evaluating: anything but a lone Cartesian
+   cell, whose faces are skewed only towards irregular neighbours (and are
+   then found from their side). */
+static int irregular(const Work *w, int r)
+{
+    return w->size[r] > 1 || !w->reg[r];
+}
+
+/* The roots of the clusters above the limit into bad[] (worst first);
+   returns their number, *smax the maximum over every cluster's faces. */
+static int bad_clusters(Work *w, double limit, SlaveKey *bad, double *smax)
+{
+    int nb = 0;
+    *smax = 0;
+    for (int c = 0; c < w->m->ncells; c++)
+        if (find(w, c) == c && irregular(w, c)) {
+            double s = cluster_skew(w, c);
+            if (s > *smax) *smax = s;
+            if (limit > 0 && s > limit) bad[nb++] = (SlaveKey){-s, c};
+        }
+    qsort(bad, (size_t)nb, sizeof *bad, cmp_slave);
+    return nb;
+}
+
+static int cmp_root(const void *a, const void *b)
+{
+    const SlaveKey *x = a, *y = b;
+    return (x->root > y->root) - (x->root < y->root);
+}
+
+/* Makes the list of roots to[0..n-1] (any order, repeats, merged roots)
+   the clusters above the limit among them, worst first; returns their
+   number. */
+static int rebad(Work *w, double limit, SlaveKey *to, int n)
+{
+    for (int i = 0; i < n; i++) to[i].root = find(w, to[i].root);
+    qsort(to, (size_t)n, sizeof *to, cmp_root);
+    int nb = 0;
+    for (int i = 0; i < n; i++) {
+        if (i && to[i].root == to[i - 1].root) continue;
+        double s = cluster_skew(w, to[i].root);
+        if (s > limit) to[nb++] = (SlaveKey){-s, to[i].root};
+    }
+    qsort(to, (size_t)nb, sizeof *to, cmp_slave);
+    return nb;
+}
+
+/* Whether choose_skew's answer for root r can have changed since r last
+   failed (seen[r] = 1 + the union count then): it depends only on r, its
+   neighbours and theirs, and every union stamps itself and its
+   neighbours (tstamp), so a neighbour of r stamped since then is what
+   can change it. */
+static int changed_since(Work *w, int r, const int *seen, const int *tstamp)
+{
+    if (!seen[r] || tstamp[r] >= seen[r]) return 1;
+    Set s;
+    set_make(w, &s, 1, &r);
+    collect_set(w, &s);
+    for (int k = 0; k < w->ncand; k++)
+        if (tstamp[w->cand[k].root] >= seen[r]) return 1;
+    return 0;
+}
+
+/* Runs the quality rounds, starting from the nb clusters bad[] above the
+   limit (worst first; room for every cell); returns the merges made.
+   The clusters a round leaves above the limit are among those it left
+   alone and the unions it made with their neighbours (a merge changes
+   the faces of the union only, which its neighbours share), so only
+   those are measured again: the same lists as rescanning the grid.  A
+   cluster that found no merge is tried again only when its neighbourhood
+   changed (changed_since): the answer would be the same otherwise. */
+static int skew_rounds(Work *w, double limit, int maxr, SlaveKey *bad, int nb)
+{
+    int nmerged = 0, nnext = 0, epoch = 0;
+    size_t cap = 0;
+    SlaveKey *next = NULL;
+    /* written at few places: the calloc'd pages elsewhere are never faulted in */
+    int *seen = MEM_NEW(int, (size_t)w->m->ncells), *tstamp = MEM_NEW(int, (size_t)w->m->ncells);
+    for (int round = 0; round < maxr && nb; round++) {
+        int nmerge = 0;
+        nnext = 0;
+        for (int i = 0; i < nb; i++) {
+            int r = bad[i].root;
+            if (find(w, r) != r) continue;   /* merged this round already: listed */
+            double s = cluster_skew(w, r), best;
+            if (!(s > limit)) continue;      /* fixed by an earlier merge */
+            Set bs = {.n = 0};
+            int fresh = changed_since(w, r, seen, tstamp);
+            if (!fresh || !choose_skew(w, r, s, &bs, &best) || !(best < s)) {
+                if (fresh) seen[r] = epoch + 1;
+                mem_grow((void **)&next, &cap, (size_t)nnext + 1, sizeof *next);
+                next[nnext++] = (SlaveKey){0, r};
+                continue;
+            }
+            for (int k = 1; k < bs.n; k++) unite(w, bs.root[0], bs.root[k]);
+            nmerge += bs.n - 1;
+            epoch++;
+            set_make(w, &bs, 1, (int[1]){find(w, r)});
+            collect_set(w, &bs);
+            tstamp[bs.root[0]] = epoch;
+            for (int k = 0; k < w->ncand; k++) tstamp[w->cand[k].root] = epoch;
+            mem_grow((void **)&next, &cap, (size_t)nnext + 1 + (size_t)w->ncand, sizeof *next);
+            next[nnext++] = (SlaveKey){0, bs.root[0]};
+            for (int k = 0; k < w->ncand; k++) next[nnext++] = (SlaveKey){0, w->cand[k].root};
+        }
+        nmerged += nmerge;
+        if (!nmerge) break;
+        memcpy(bad, next, sizeof *bad * (size_t)nnext);
+        nb = rebad(w, limit, bad, nnext);
+    }
+    free(next);
+    free(seen);
+    free(tstamp);
+    return nmerged;
+}
+
+/* The input's cell faces in a shallow copy, so in stays untouched.  Cell
+   volumes go to g->cell_vol (work_init); face geometry is face_geo's;
+   there are no cell centres: cmom holds V x centroid. */
 static void input_geometry(const Mesh *in, Mesh *g)
 {
     *g = *in;
     g->face_area = g->face_centre = g->cell_vol = g->cell_centre = NULL;
     g->cell_off = g->cell_faces = NULL;
     mesh_cell_faces(g);
-    mesh_geometry(g);
+    g->cell_vol = mem_alloc(sizeof(double) * ((size_t)g->ncells + 1));
 }
 
 static void free_input_geometry(Mesh *g)
 {
-    free(g->face_area);
-    free(g->face_centre);
     free(g->cell_vol);
-    free(g->cell_centre);
     free(g->cell_off);
     free(g->cell_faces);
 }
 
-static void work_init(Work *w, const Mesh *m, const MergeOpts *o)
+/* Whether cell c is its whole parent Cartesian cell [lo, hi]: six faces,
+   each a quadrilateral of the parent's corners lying in one of its
+   planes, one per plane.  Such a cell's volume and centroid are the box's
+   (no face geometry needed). */
+static int is_regular(const Mesh *m, int c, const double lo[3], const double hi[3])
 {
+    if (m->cell_off[c + 1] - m->cell_off[c] != 6) return 0;
+    double tol[3];
+    for (int k = 0; k < 3; k++) tol[k] = PLANE_TOL * (fmax(fabs(lo[k]), fabs(hi[k])) + hi[k] - lo[k]);
+    int seen = 0;
+    for (int i = m->cell_off[c]; i < m->cell_off[c + 1]; i++) {
+        int f = m->cell_faces[i];
+        if (m->face_off[f + 1] - m->face_off[f] != 4) return 0;
+        int at[3] = {0, 0, 0};   /* per axis: bit 1 a point at lo, bit 2 a point at hi */
+        for (int q = m->face_off[f]; q < m->face_off[f + 1]; q++) {
+            const double *x = m->points + 3 * (size_t)m->face_idx[q];
+            for (int k = 0; k < 3; k++) {
+                /* exact first: grid points are the Cartesian coordinates */
+                if (x[k] == lo[k] || fabs(x[k] - lo[k]) <= tol[k]) at[k] |= 1;
+                else if (x[k] == hi[k] || fabs(x[k] - hi[k]) <= tol[k]) at[k] |= 2;
+                else return 0;
+            }
+        }
+        int plane = -1;
+        for (int k = 0; k < 3 && plane < 0; k++)
+            if (at[k] != 3) plane = 2 * k + (at[k] == 2);
+        if (plane < 0 || (seen & 1 << plane)) return 0;
+        seen |= 1 << plane;
+    }
+    return seen == 63;
+}
+
+/* Scratch for geom_cell on one cell: its faces renumbered 0..n-1. */
+typedef struct CellScratch {
+    int *faces, *off, *idx;
+    char *flip;
+    double *S, *C;
+    size_t cap, idx_cap;
+} CellScratch;
+
+/* geom_cell of cell c, with its faces' geometry from face_geo. */
+static void cell_geom(Work *w, int c, CellScratch *cs, double *V, double C[3])
+{
+    const Mesh *m = w->m;
+    const int *cf = m->cell_faces + m->cell_off[c];
+    int n = m->cell_off[c + 1] - m->cell_off[c];
+    size_t cap = cs->cap, nidx = 0;
+    mem_grow((void **)&cs->faces, &cs->cap, (size_t)n + 1, sizeof(int));
+    if (cs->cap != cap) {
+        cs->off = mem_realloc(cs->off, sizeof(int) * (cs->cap + 1));
+        cs->flip = mem_realloc(cs->flip, cs->cap);
+        cs->S = mem_realloc(cs->S, 3 * sizeof(double) * cs->cap);
+        cs->C = mem_realloc(cs->C, 3 * sizeof(double) * cs->cap);
+    }
+    for (int k = 0; k < n; k++) nidx += (size_t)(m->face_off[cf[k] + 1] - m->face_off[cf[k]]);
+    mem_grow((void **)&cs->idx, &cs->idx_cap, nidx + 1, sizeof(int));
+    cs->off[0] = 0;
+    for (int k = 0; k < n; k++) {
+        int f = cf[k], len = m->face_off[f + 1] - m->face_off[f];
+        const double *g = face_geo(w, f);
+        memcpy(cs->S + 3 * k, g, 3 * sizeof(double));
+        memcpy(cs->C + 3 * k, g + 3, 3 * sizeof(double));
+        memcpy(cs->idx + cs->off[k], m->face_idx + m->face_off[f], sizeof(int) * (size_t)len);
+        cs->off[k + 1] = cs->off[k] + len;
+        cs->faces[k] = k;
+        cs->flip[k] = (char)(m->owner[f] != c);
+    }
+    geom_cell(m->points, cs->off, cs->idx, cs->faces, cs->flip, n, cs->S, cs->C, V, C);
+}
+
+static void scratch_free(CellScratch *cs)
+{
+    free(cs->faces);
+    free(cs->off);
+    free(cs->idx);
+    free(cs->flip);
+    free(cs->S);
+    free(cs->C);
+}
+
+/* Volume and first moment of cell c: the parent box's for a regular cell,
+   else geom_cell's from its faces. */
+static void cell_init(Work *w, int c, CellScratch *cs)
+{
+    const Mesh *m = w->m;
+    double lo[3], hi[3], C[3], V;
+    int hasbox = parent_box(m, c, lo, hi) == 0;
+    w->vcart[c] = hasbox ? (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]) : 0;
+    w->reg[c] = (char)(hasbox && is_regular(m, c, lo, hi));
+    if (w->reg[c]) {
+        V = w->vcart[c];
+        for (int k = 0; k < 3; k++) C[k] = 0.5 * (lo[k] + hi[k]);
+    } else {
+        cell_geom(w, c, cs, &V, C);
+    }
+    w->g->cell_vol[c] = w->cvol[c] = V;
+    for (int k = 0; k < 3; k++) w->cmom[3 * (size_t)c + k] = V * C[k];
+}
+
+static void work_init(Work *w, Mesh *g, const MergeOpts *o)
+{
+    const Mesh *m = g;
     int nc = m->ncells;
     memset(w, 0, sizeof *w);
     w->m = m;
+    w->g = g;
     w->o = o;
-    quality_empty_dirs(m, w->empty);
-    w->vcart = MEM_NEW(double, (size_t)nc);
-    w->uf = MEM_NEW(int, (size_t)nc);
-    w->size = MEM_NEW(int, (size_t)nc);
-    w->next = MEM_NEW(int, (size_t)nc);
-    w->cvol = MEM_NEW(double, (size_t)nc);
-    w->cmom = MEM_NEW(double, 3 * (size_t)nc);
-    w->big = MEM_NEW(int, (size_t)nc);
+    w->fslot = MEM_NEW(int, (size_t)m->nfaces);
+    w->vcart = mem_alloc(sizeof(double) * (size_t)nc);
+    w->uf = mem_alloc(sizeof(int) * (size_t)nc);
+    w->size = mem_alloc(sizeof(int) * (size_t)nc);
+    w->next = mem_alloc(sizeof(int) * (size_t)nc);
+    w->cvol = mem_alloc(sizeof(double) * (size_t)nc);
+    w->cmom = mem_alloc(3 * sizeof(double) * (size_t)nc);
+    w->big = mem_alloc(sizeof(int) * (size_t)nc);
+    w->reg = mem_alloc((size_t)nc);
     w->empty_patch = MEM_NEW(char, (size_t)m->npatches);
-    for (int p = 0; p < m->npatches; p++) w->empty_patch[p] = !strcmp(m->patches[p].type, "empty");
+    w->skip_patch = MEM_NEW(char, (size_t)m->npatches);
+    for (int p = 0; p < m->npatches; p++) {
+        const Patch *pa = &m->patches[p];
+        w->empty_patch[p] = !strcmp(pa->type, "empty");
+        w->skip_patch[p] = w->empty_patch[p] || !strncmp(pa->type, "cyclic", 6);
+        /* quality_empty_dirs's rule: the largest component of each empty
+           face's area vector is an empty direction */
+        for (int f = pa->start; f < pa->start + pa->size && w->empty_patch[p]; f++) {
+            const double *S = face_geo(w, f);
+            int k = fabs(S[0]) >= fabs(S[1]) ? 0 : 1;
+            if (fabs(S[2]) > fabs(S[k])) k = 2;
+            w->empty[k] = 1;
+        }
+    }
+    CellScratch cs = {0};
     for (int c = 0; c < nc; c++) {
-        double h[3];
-        w->vcart[c] = mesh_cell_spacing(m, c, h) == 0 ? h[0] * h[1] * h[2] : 0;
         w->uf[c] = w->next[c] = w->big[c] = c;
         w->size[c] = 1;
-        w->cvol[c] = m->cell_vol[c];
-        for (int k = 0; k < 3; k++) w->cmom[3 * (size_t)c + k] = m->cell_vol[c] * m->cell_centre[3 * (size_t)c + k];
+        cell_init(w, c, &cs);
     }
+    scratch_free(&cs);
 }
 
 static void work_free(Work *w)
 {
+    free(w->fslot);
+    free(w->fgeo);
     free(w->vcart);
     free(w->uf);
     free(w->size);
@@ -453,6 +891,8 @@ static void work_free(Work *w)
     free(w->cmom);
     free(w->big);
     free(w->empty_patch);
+    free(w->skip_patch);
+    free(w->reg);
     free(w->cand);
     free(w->order);
 }
@@ -496,7 +936,8 @@ static void iv_push(IntVec *a, int x)
 }
 
 typedef struct Joined {
-    int *face;        /* per face: -1 kept, -2 dropped, else outline index (the group's first face) */
+    int *face;        /* per boundary face (f - ninternal): -1 kept, -2 dropped, else outline
+                         index (the group's first face); NULL without empty patches */
     IntVec off, pts;  /* outlines: points pts[off[i]..off[i+1]-1] */
     IntVec grp, ea, eb, mark;   /* scratch */
 } Joined;
@@ -514,9 +955,10 @@ static int point_on(const Mesh *m, int pt, int k, double v, double tol)
 
 /* Plane of face f: axis of the largest area component, coordinate of its
    first point; -1 when some point is off that plane. */
-static int face_plane(const Mesh *m, int f, double tol_rel, double *v)
+static int face_plane(Work *w, int f, double tol_rel, double *v)
 {
-    const double *S = m->face_area + 3 * (size_t)f;
+    const Mesh *m = w->m;
+    const double *S = face_geo(w, f);
     int k = fabs(S[0]) >= fabs(S[1]) ? 0 : 1;
     if (fabs(S[2]) > fabs(S[k])) k = 2;
     *v = m->points[3 * (size_t)m->face_idx[m->face_off[f]] + k];
@@ -563,7 +1005,7 @@ static void join_group(Work *w, Joined *j, int r, int k, double v, double tol)
     do {
         for (int i = m->cell_off[c]; i < m->cell_off[c + 1]; i++) {
             int f = m->cell_faces[i];
-            if (j->mark.v[f]) continue;
+            if (f >= m->ninternal && j->mark.v[f - m->ninternal]) continue;
             int own = m->owner[f] == c;
             if (f < m->ninternal && find(w, own ? m->neighbour[f] : m->owner[f]) == r) continue;
             const int *p = m->face_idx + m->face_off[f];
@@ -582,8 +1024,8 @@ static void join_group(Work *w, Joined *j, int r, int k, double v, double tol)
     int lead = j->grp.v[0];
     for (int i = 1; i < j->grp.n; i++)
         if (j->grp.v[i] < lead) lead = j->grp.v[i];
-    for (int i = 0; i < j->grp.n; i++) j->face[j->grp.v[i]] = -2;
-    j->face[lead] = j->off.n - 2;
+    for (int i = 0; i < j->grp.n; i++) j->face[j->grp.v[i] - m->ninternal] = -2;
+    j->face[lead - m->ninternal] = j->off.n - 2;
 }
 
 /* Groups cluster r's empty faces by patch and plane and joins each group
@@ -601,22 +1043,22 @@ static void join_cluster(Work *w, Joined *j, int r)
     for (int i = 0; i < all.n; i++) {
         int f0 = all.v[i];
         double v0, v;
-        int k = f0 >= 0 ? face_plane(m, f0, PLANE_TOL, &v0) : -1;
+        int k = f0 >= 0 ? face_plane(w, f0, PLANE_TOL, &v0) : -1;
         if (k < 0) continue;
         double tol = PLANE_TOL * (fabs(v0) + 1);
         j->grp.n = 0;
         for (int q = i; q < all.n; q++) {
             int f = all.v[q];
-            if (f >= 0 && mesh_face_patch(m, f) == mesh_face_patch(m, f0) && face_plane(m, f, PLANE_TOL, &v) == k &&
+            if (f >= 0 && mesh_face_patch(m, f) == mesh_face_patch(m, f0) && face_plane(w, f, PLANE_TOL, &v) == k &&
                 fabs(v - v0) <= tol) {
                 iv_push(&j->grp, f);
                 all.v[q] = -1;
             }
         }
         if (j->grp.n < 2) continue;
-        for (int q = 0; q < j->grp.n; q++) j->mark.v[j->grp.v[q]] = 1;
+        for (int q = 0; q < j->grp.n; q++) j->mark.v[j->grp.v[q] - m->ninternal] = 1;
         join_group(w, j, r, k, v0, tol);
-        for (int q = 0; q < j->grp.n; q++) j->mark.v[j->grp.v[q]] = 0;
+        for (int q = 0; q < j->grp.n; q++) j->mark.v[j->grp.v[q] - m->ninternal] = 0;
     }
     free(all.v);
 }
@@ -624,15 +1066,16 @@ static void join_cluster(Work *w, Joined *j, int r)
 static void join_empty(Work *w, Joined *j)
 {
     const Mesh *m = w->m;
+    int nb = m->nfaces - m->ninternal, any = 0;
     memset(j, 0, sizeof *j);
-    j->face = MEM_NEW(int, (size_t)m->nfaces);
-    for (int f = 0; f < m->nfaces; f++) j->face[f] = -1;
-    j->mark.v = MEM_NEW(int, (size_t)m->nfaces);
-    j->mark.n = j->mark.cap = m->nfaces;
+    for (int p = 0; p < m->npatches; p++) any |= w->empty_patch[p];
+    if (!any) return;
+    j->face = mem_alloc(sizeof(int) * ((size_t)nb + 1));
+    for (int i = 0; i < nb; i++) j->face[i] = -1;
+    j->mark.v = MEM_NEW(int, (size_t)nb);
+    j->mark.n = j->mark.cap = nb;
     iv_push(&j->off, 0);
-    int any = 0;
-    for (int p = 0; p < m->npatches; p++) any |= !strcmp(m->patches[p].type, "empty");
-    for (int c = 0; c < m->ncells && any; c++)
+    for (int c = 0; c < m->ncells; c++)
         if (find(w, c) == c && w->size[c] > 1) join_cluster(w, j, c);
 }
 
@@ -647,72 +1090,172 @@ static void joined_free(Joined *j)
     free(j->mark.v);
 }
 
-/* Assembles the union polyhedra of the clusters into out; newid[c] is
-   the output cell of input cell c. */
-static int assemble(Work *w, const int *newid, Mesh *out, Err *e)
+/* Internal faces of out in polyMesh order: the input's internal faces
+   whose cells are in different clusters, sorted by (lower, higher)
+   output cell with ties in input order, as meshbuild_finish would give
+   them.  Returns their number; ord gets the input faces, nei the higher
+   output cells. */
+static int internal_order(const Mesh *m, const int *newid, int nout, int *ord, int *nei)
+{
+    int *start = MEM_NEW(int, (size_t)nout + 1), n = 0;
+    for (int f = 0; f < m->ninternal; f++) {
+        int a = newid[m->owner[f]], b = newid[m->neighbour[f]];
+        if (a != b) start[(a < b ? a : b) + 1]++, n++;
+    }
+    for (int C = 0; C < nout; C++) start[C + 1] += start[C];
+    for (int f = 0; f < m->ninternal; f++) {
+        int a = newid[m->owner[f]], b = newid[m->neighbour[f]];
+        if (a == b) continue;
+        int pos = start[a < b ? a : b]++;
+        ord[pos] = f;
+        nei[pos] = a < b ? b : a;
+    }
+    /* start[C] is now the end of C's faces: a stable insertion sort on the
+       neighbour inside each owner's run (runs are short, mostly sorted) */
+    for (int C = 0, s = 0; C < nout; s = start[C++])
+        for (int i = s + 1; i < start[C]; i++) {
+            int f = ord[i], b = nei[i], k = i;
+            for (; k > s && nei[k - 1] > b; k--) {
+                ord[k] = ord[k - 1];
+                nei[k] = nei[k - 1];
+            }
+            ord[k] = f;
+            nei[k] = b;
+        }
+    free(start);
+    return n;
+}
+
+/* Appends the n points pts to out's face list (reversed when flip). */
+static void put_face(Mesh *out, int g, const int *pts, int n, int flip)
+{
+    int *dst = out->face_idx + out->face_off[g];
+    for (int k = 0; k < n; k++) dst[k] = flip ? pts[n - 1 - k] : pts[k];
+    out->face_off[g + 1] = out->face_off[g] + n;
+}
+
+/* Keeps the points out's faces use, in their input order. */
+static void out_points(const Mesh *m, Mesh *out)
+{
+    int *pmap = MEM_NEW(int, (size_t)m->npoints);
+    int nidx = out->face_off[out->nfaces], np = 0;
+    for (int k = 0; k < nidx; k++) pmap[out->face_idx[k]] = 1;
+    for (int i = 0; i < m->npoints; i++) pmap[i] = pmap[i] ? np++ : -1;
+    out->npoints = np;
+    out->points = mem_alloc(3 * sizeof(double) * ((size_t)np + 1));
+    if (np == m->npoints) {
+        memcpy(out->points, m->points, 3 * sizeof(double) * (size_t)np);
+    } else {
+        for (int i = 0; i < m->npoints; i++)
+            if (pmap[i] >= 0) memcpy(out->points + 3 * (size_t)pmap[i], m->points + 3 * (size_t)i, 3 * sizeof(double));
+        for (int k = 0; k < nidx; k++) out->face_idx[k] = pmap[out->face_idx[k]];
+    }
+    free(pmap);
+}
+
+/* Assembles the union polyhedra of the clusters into out (nout cells);
+   newid[c] is the output cell of input cell c.  This is what meshbuild
+   would make of the faces (same order, orientation and points), built
+   directly: the input is in polyMesh order already, so internal faces
+   need a sort by owner only inside runs, and boundary faces keep their
+   order. */
+static void assemble(Work *w, const int *newid, int nout, Mesh *out)
 {
     const Mesh *m = w->m;
     Joined j;
     join_empty(w, &j);
-    MeshBuild b;
-    meshbuild_init(&b);
-    meshbuild_reserve(&b, (size_t)m->npoints, (size_t)m->nfaces, (size_t)m->face_off[m->nfaces]);
+    /* the cell faces are not needed any more: their room (2 per internal
+       face) takes the order; the neighbours go where they belong */
+    int *ord = w->g->cell_faces;
+    int *nei = mem_alloc(sizeof(int) * ((size_t)m->ninternal + 1));
+    int ni = internal_order(m, newid, nout, ord, nei);
+    size_t nidx = 0;
+    int nf = ni;
+    for (int i = 0; i < ni; i++) nidx += (size_t)(m->face_off[ord[i] + 1] - m->face_off[ord[i]]);
+    for (int f = m->ninternal; f < m->nfaces; f++) {
+        int jf = j.face ? j.face[f - m->ninternal] : -1;
+        if (jf == -2) continue;
+        nf++;
+        nidx += (size_t)(jf >= 0 ? j.off.v[jf + 1] - j.off.v[jf] : m->face_off[f + 1] - m->face_off[f]);
+    }
+    out->ncells = nout;
+    out->nfaces = nf;
+    out->ninternal = ni;
+    out->face_off = mem_alloc(sizeof(int) * ((size_t)nf + 1));
+    out->face_idx = mem_alloc(sizeof(int) * (nidx + 1));
+    out->owner = mem_alloc(sizeof(int) * ((size_t)nf + 1));
+    out->face_off[0] = 0;
+    for (int g = 0; g < ni; g++) {
+        int f = ord[g], a = newid[m->owner[f]], b = newid[m->neighbour[f]];
+        put_face(out, g, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], a > b);
+        out->owner[g] = a < b ? a : b;
+    }
+    out->neighbour = nei;
+    out->npatches = m->npatches;
+    out->patches = MEM_NEW(Patch, (size_t)m->npatches);
+    int g = ni;
+    if (m->wall_normal) out->wall_normal = mem_alloc(3 * sizeof(double) * ((size_t)(nf - ni) + 1));
     for (int p = 0; p < m->npatches; p++) {
         const Patch *pa = &m->patches[p];
-        meshbuild_patch(&b, pa->name, pa->type, pa->neighbour, pa->groups);
-    }
-    for (int i = 0; i < m->npoints; i++) meshbuild_point(&b, m->points + 3 * (size_t)i);
-    int nb = m->nfaces - m->ninternal;
-    int *added = MEM_NEW(int, (size_t)nb);   /* added index of each boundary face, -1 dropped */
-    int p = 0;
-    for (int f = 0; f < m->nfaces; f++) {
-        const int *pts = m->face_idx + m->face_off[f];
-        int n = m->face_off[f + 1] - m->face_off[f], o = newid[m->owner[f]];
-        if (f < m->ninternal) {
-            int nb2 = newid[m->neighbour[f]];
-            if (nb2 != o) meshbuild_face(&b, pts, n, o, nb2, -1);
-            continue;
+        Patch *q = &out->patches[p];
+        q->name = mem_strdup(pa->name);
+        q->type = mem_strdup(pa->type);
+        q->neighbour = pa->neighbour ? mem_strdup(pa->neighbour) : NULL;
+        q->groups = pa->groups ? mem_strdup(pa->groups) : NULL;
+        q->start = g;
+        for (int f = pa->start; f < pa->start + pa->size; f++) {
+            int jf = j.face ? j.face[f - m->ninternal] : -1;
+            if (jf == -2) continue;
+            if (jf >= 0) put_face(out, g, j.pts.v + j.off.v[jf], j.off.v[jf + 1] - j.off.v[jf], 0);
+            else put_face(out, g, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], 0);
+            out->owner[g] = newid[m->owner[f]];
+            if (m->wall_normal)
+                memcpy(out->wall_normal + 3 * (size_t)(g - ni), m->wall_normal + 3 * (size_t)(f - m->ninternal),
+                       3 * sizeof(double));
+            g++;
         }
-        while (p + 1 < m->npatches && f >= m->patches[p].start + m->patches[p].size) p++;
-        int jf = j.face[f];
-        if (jf >= 0) {
-            pts = j.pts.v + j.off.v[jf];
-            n = j.off.v[jf + 1] - j.off.v[jf];
-        }
-        added[f - m->ninternal] = jf == -2 ? -1 : meshbuild_face(&b, pts, n, o, -1, p);
+        q->size = g - q->start;
     }
     joined_free(&j);
-    int *fmap = MEM_NEW(int, (size_t)b.nfaces);
-    mesh_init(out);
-    int rc = meshbuild_finish(&b, out, fmap, NULL, e);
-    if (rc == 0 && m->wall_normal) {
-        out->wall_normal = MEM_NEW(double, 3 * (size_t)(out->nfaces - out->ninternal));
-        for (int i = 0; i < nb; i++)
-            if (added[i] >= 0)
-                memcpy(out->wall_normal + 3 * (size_t)(fmap[added[i]] - out->ninternal),
-                       m->wall_normal + 3 * (size_t)i, 3 * sizeof(double));
-    }
-    free(added);
-    free(fmap);
-    return rc;
+    out_points(m, out);
 }
 
-static double max_aspect(const Mesh *m)
-{
-    int empty[3];
-    double amax = 0;
-    quality_empty_dirs(m, empty);
-    for (int c = 0; c < m->ncells; c++) {
-        double open, ar;
-        quality_cell(m, c, empty, &open, &ar);
-        if (ar > amax) amax = ar;
-    }
-    return amax;
-}
-
-static void stats_before(const Work *w, MergeStats *st)
+/* Aspect ratio (quality_cell's) of cluster r, from its members' faces
+   and its volume: the faces shared inside are not the union's, the other
+   ones are kept (a 2-D cluster's joined empty faces add up to the members'
+   ones).  A lone regular cell's comes from its box; amemo keeps the last
+   box's, the common case being a uniform grid. */
+static double cluster_aspect(Work *w, int r, double amemo[4])
 {
     const Mesh *m = w->m;
+    double mag[3] = {0, 0, 0};
+    if (w->size[r] == 1 && w->reg[r]) {
+        double h[3];
+        mesh_cell_spacing(m, r, h);
+        if (h[0] == amemo[0] && h[1] == amemo[1] && h[2] == amemo[2]) return amemo[3];
+        for (int k = 0; k < 3; k++) {
+            amemo[k] = h[k];
+            mag[k] = 2 * h[(k + 1) % 3] * h[(k + 2) % 3];
+        }
+        return amemo[3] = quality_aspect(mag, w->cvol[r], w->empty);
+    }
+    int c = r;
+    do {
+        for (int i = m->cell_off[c]; i < m->cell_off[c + 1]; i++) {
+            int f = m->cell_faces[i];
+            if (f < m->ninternal && find(w, m->owner[f]) == find(w, m->neighbour[f])) continue;
+            const double *S = face_geo(w, f);
+            for (int k = 0; k < 3; k++) mag[k] += fabs(S[k]);
+        }
+        c = w->next[c];
+    } while (c != r);
+    return quality_aspect(mag, w->cvol[r], w->empty);
+}
+
+static void stats_before(Work *w, MergeStats *st)
+{
+    const Mesh *m = w->m;
+    double amemo[4] = {-1, -1, -1, 0};
     st->ncells_in = m->ncells;
     st->ratio_min_before = HUGE_VAL;
     for (int c = 0; c < m->ncells; c++) {
@@ -722,33 +1265,42 @@ static void stats_before(const Work *w, MergeStats *st)
             if (r < st->ratio_min_before) st->ratio_min_before = r;
             if (r <= w->o->threshold) st->nslaves++;
         }
+        double ar = cluster_aspect(w, c, amemo);
+        if (ar > st->aspect_max_before) st->aspect_max_before = ar;
     }
-    st->aspect_max_before = max_aspect(m);
 }
 
-/* Statistics of out; root[C] is a member root of output cell C. */
-static void stats_after(Work *w, const int *root, const char *stuck, Mesh *out, MergeStats *st)
+/* Statistics of the output's nout cells from the clusters (no output
+   geometry needed); root[C] is the root of output cell C. */
+static void stats_after(Work *w, const int *root, const char *stuck, int nout, MergeStats *st)
 {
-    st->ncells_out = out->ncells;
+    double amemo[4] = {-1, -1, -1, 0};
+    st->ncells_out = nout;
     st->ratio_min_after = HUGE_VAL;
     st->ratio_min_cell = -1;
-    st->unresolved = MEM_NEW(int, (size_t)out->ncells);
-    st->reason = MEM_NEW(int, (size_t)out->ncells);
-    for (int C = 0; C < out->ncells; C++) {
+    st->unresolved = MEM_NEW(int, (size_t)nout);
+    st->reason = MEM_NEW(int, (size_t)nout);
+    for (int C = 0; C < nout; C++) {
         int r = root[C];
-        st->vol_after += out->cell_vol[C];
+        st->vol_after += w->cvol[r];
         if (w->size[r] > 1) st->nclusters++;
         double vc = w->vcart[w->big[r]];
-        if (vc > 0 && out->cell_vol[C] / vc < st->ratio_min_after) {
-            st->ratio_min_after = out->cell_vol[C] / vc;
+        if (vc > 0 && w->cvol[r] / vc < st->ratio_min_after) {
+            st->ratio_min_after = w->cvol[r] / vc;
             st->ratio_min_cell = C;
         }
+        double ar = cluster_aspect(w, r, amemo);
+        if (ar > st->aspect_max_after) st->aspect_max_after = ar;
+        double sk = irregular(w, r) ? cluster_skew(w, r) : 0;
+        if (sk > st->skew_max_after) st->skew_max_after = sk;
         if (below(w, r)) {
             st->unresolved[st->nunresolved] = C;
             st->reason[st->nunresolved++] = stuck[r] ? MERGE_NO_NEIGHBOUR : MERGE_ITER_LIMIT;
+        } else if (w->o->max_skewness > 0 && sk > w->o->max_skewness) {
+            st->unresolved[st->nunresolved] = C;
+            st->reason[st->nunresolved++] = MERGE_SKEWNESS;
         }
     }
-    st->aspect_max_after = max_aspect(out);
 }
 
 static int check_input(const Mesh *in, const MergeOpts *o, Err *e)
@@ -758,6 +1310,7 @@ static int check_input(const Mesh *in, const MergeOpts *o, Err *e)
     if (o->criterion != MERGE_NORMAL && o->criterion != MERGE_NORMAL_H)
         return err_set(e, NULL, 0, "merge: unknown criterion %d", o->criterion);
     if (o->max_iter < 0) return err_set(e, NULL, 0, "merge: maxIter %d is negative", o->max_iter);
+    if (!(o->max_skewness >= 0)) return err_set(e, NULL, 0, "merge: maxSkewness %g is negative", o->max_skewness);
     if (!in->cell_parent || in->cart.n[0] <= 0)
         return err_set(e, NULL, 0,
                        "merge: the grid has no Cartesian parents (cellParent, cartesianGrid); "
@@ -782,6 +1335,10 @@ int merge_mesh(const Mesh *in, const MergeOpts *o, Mesh *out, MergeStats *st, Er
     int nc = g.ncells;
     char *stuck = MEM_NEW(char, (size_t)nc);
     st->niter = merge_rounds(&w, stuck);
+    SlaveKey *bad = mem_alloc(sizeof(SlaveKey) * (size_t)nc);
+    int nbad = bad_clusters(&w, o->max_skewness, bad, &st->skew_max_before);
+    st->nskew_merged = skew_rounds(&w, o->max_skewness, o->max_iter, bad, nbad);
+    free(bad);
 
     int *newid = MEM_NEW(int, (size_t)nc), *root = MEM_NEW(int, (size_t)nc);
     for (int c = 0; c < nc; c++) newid[c] = -1;
@@ -794,22 +1351,16 @@ int merge_mesh(const Mesh *in, const MergeOpts *o, Mesh *out, MergeStats *st, Er
         }
         newid[c] = newid[r];
     }
-    int rc = assemble(&w, newid, out, e);
-    if (rc == 0) {
-        copy_cart(&in->cart, &out->cart);
-        out->cell_parent = MEM_NEW(int, (size_t)nout);
-        for (int C = 0; C < nout; C++) out->cell_parent[C] = in->cell_parent[w.big[root[C]]];
-        out->merge_map = newid;
-        out->nmerge_old = nc;
-        newid = NULL;
-        mesh_cell_faces(out);
-        mesh_geometry(out);
-        stats_after(&w, root, stuck, out, st);
-    }
-    free(newid);
+    stats_after(&w, root, stuck, nout, st);
+    assemble(&w, newid, nout, out);   /* last: it reuses g's cell faces */
+    copy_cart(&in->cart, &out->cart);
+    out->cell_parent = mem_alloc(sizeof(int) * (size_t)nout);
+    for (int C = 0; C < nout; C++) out->cell_parent[C] = in->cell_parent[w.big[root[C]]];
+    out->merge_map = newid;
+    out->nmerge_old = nc;
     free(root);
     free(stuck);
     work_free(&w);
     free_input_geometry(&g);
-    return rc;
+    return 0;
 }

@@ -21,8 +21,19 @@
 **
 ** The merged cell is the union polyhedron: the faces shared inside a
 ** cluster are removed, all other faces are kept unchanged (eq. 4.59),
-** its cell_parent is its largest member's, and mesh_geometry gives the
-** cluster's volume V_M + V_S and centroid.  Total volume is unchanged.
+** its cell_parent is its largest member's, and its volume is V_M + V_S,
+** its centroid the members' volume-weighted one.  Total volume is
+** unchanged.
+**
+** Quality pass [ours, doc/theory.md §7]: after the volume rounds, a
+** cluster with a face whose OpenFOAM skewness (quality.h; boundary faces
+** by the face-normal projection) exceeds max_skewness is merged with the
+** face neighbour whose union has the lowest maximum skewness over the
+** faces that change (the union's faces, from the union's centroid), among
+** the unions passing the face-pyramid check, when that lowers it; up to
+** max_iter rounds; when no union with one neighbour lowers it, unions
+** with two are tried.  Clusters still above the limit are reported with
+** MERGE_SKEWNESS.  Empty and cyclic faces are not measured.
 */
 #ifndef KIESEL_MERGE_H
 #define KIESEL_MERGE_H
@@ -31,12 +42,13 @@
 #include "mesh.h"
 
 enum { MERGE_NORMAL = 0, MERGE_NORMAL_H = 1 };   /* |n_i|, |n_i h_i| */
-enum { MERGE_OK = 0, MERGE_NO_NEIGHBOUR, MERGE_ITER_LIMIT };
+enum { MERGE_OK = 0, MERGE_NO_NEIGHBOUR, MERGE_ITER_LIMIT, MERGE_SKEWNESS };
 
 typedef struct MergeOpts {
     double threshold;   /* M_V, default 0.5 */
     int criterion;      /* MERGE_NORMAL (default) or MERGE_NORMAL_H */
-    int max_iter;       /* default 10 */
+    int max_iter;       /* default 10; also bounds the quality rounds */
+    double max_skewness;   /* quality pass limit, default 4 (QUALITY_SKEW_HIGH); 0 = off */
 } MergeOpts;
 
 typedef struct MergeStats {
@@ -52,6 +64,9 @@ typedef struct MergeStats {
     int nunresolved;          /* output cells still below the bound */
     int *unresolved;          /* their output cell numbers */
     int *reason;              /* MERGE_* for each */
+    int nskew_merged;         /* merges made by the quality pass */
+    double skew_max_before;   /* max face skewness after the volume rounds */
+    double skew_max_after;    /* and in the output */
 } MergeStats;
 
 void merge_opts_default(MergeOpts *o);
@@ -60,8 +75,9 @@ const char *merge_reason_name(int reason);
 /* Merges the small cells of in (cell_parent and cart required) into out
    (need not be initialised).  out->merge_map gets in's cell count
    entries: the output cell of each input cell.  wall_normal, when
-   present, follows the boundary faces.  Fills st (free with
-   merge_stats_free). */
+   present, follows the boundary faces.  out comes without cell faces and
+   geometry (mesh_geometry computes them; the statistics come from the
+   input).  Fills st (free with merge_stats_free). */
 int merge_mesh(const Mesh *in, const MergeOpts *o, Mesh *out, MergeStats *st, Err *e);
 void merge_stats_free(MergeStats *st);
 

@@ -742,6 +742,11 @@ TEST(bad_input)
     CONTAINS(e.msg, "merge: unknown criterion 7");
     mesh_free(&out);
     merge_opts_default(&o);
+    o.max_skewness = -1;
+    EXPECT(merge_mesh(&in, &o, &out, &st, &e) == -1, "maxSkewness -1 accepted");
+    CONTAINS(e.msg, "merge: maxSkewness -1 is negative");
+    mesh_free(&out);
+    merge_opts_default(&o);
     int keep = in.neighbour[0];
     in.neighbour[0] = in.owner[0];
     EXPECT(merge_mesh(&in, &o, &out, &st, &e) == -1, "broken ordering accepted");
@@ -756,6 +761,102 @@ TEST(bad_input)
     mesh_free(&in);
 }
 
+
+/* Quality pass: line 0.8 x + 0.6 y = 2.25 on a 4x4 grid of 1 x 0.25
+   cells (0.1 thick), fluid right.  Cells (2,0) and (2,1) keep
+   trapezoids of 0.28125 and 0.46875 of their parents: slaves, each
+   merging +x into (3,0), (3,1).  The cluster (2,0)+(3,0) is the polygon
+   (2.8125,0) (4,0) (4,0.25) (2.625,0.25); its bottom wall face from
+   x = 2.8125 to 3 (centre 2.90625, half length 0.09375) lies far along
+   the wall from the cluster's centroid: skewness |2.90625 - C_x| /
+   max(0.4 C_y, 0.09375) = 4.82 (OpenFOAM's boundary-face rule).  The pass
+   joins the two clusters (the union's centroid is twice as far from the
+   wall, which halves the worst skewness to 3.85); with maxSkewness 0 the
+   face stays.  A single row of such cells has no neighbour to merge
+   with: the cluster is reported. */
+static void polygon_centroid(const double (*p)[2], int n, double c[2])
+{
+    double a = 0;
+    c[0] = c[1] = 0;
+    for (int i = 0; i < n; i++) {
+        const double *u = p[i], *v = p[(i + 1) % n];
+        double x = u[0] * v[1] - v[0] * u[1];
+        a += x;
+        c[0] += (u[0] + v[0]) * x;
+        c[1] += (u[1] + v[1]) * x;
+    }
+    c[0] /= 3 * a;
+    c[1] /= 3 * a;
+}
+
+TEST(skewness_pass)
+{
+    static const double y[] = {0, 0.25, 0.5, 0.75, 1};
+    Cut2 g = {4, 4, unit5, y, 0, 0.1, 1, {{-2.25, 0.8, 0.6}}};
+    Mesh in, out;
+    MergeOpts o;
+    MergeStats st;
+    Quality q;
+    Err e;
+    cut2(&in, &g);
+    int s0 = cell_of(&in, 2, 0), m0 = cell_of(&in, 3, 0), s1 = cell_of(&in, 2, 1), m1 = cell_of(&in, 3, 1);
+    EXPECT(in.ncells == 8 && s0 >= 0 && s1 >= 0, "%d cells", in.ncells);
+    NEAR(in.cell_vol[s0], 0.28125 * 0.025, 1e-16);
+    NEAR(in.cell_vol[s1], 0.46875 * 0.025, 1e-16);
+    static const double poly[4][2] = {{2.8125, 0}, {4, 0}, {4, 0.25}, {2.625, 0.25}};
+    double C[2];
+    polygon_centroid(poly, 4, C);
+    double skew0 = fabs(2.90625 - C[0]) / fmax(0.4 * C[1], 0.09375);
+    EXPECT(skew0 > 4.8 && skew0 < 4.9, "expected skewness %g", skew0);
+
+    merge_opts_default(&o);
+    o.max_skewness = 0;   /* off: the skewed face stays */
+    EXPECT(merge_mesh(&in, &o, &out, &st, &e) == 0, "%s", e.msg);
+    check_merged(&in, &out, &st, 0.5);
+    quality_measure(&out, &q);
+    EXPECT(out.ncells == 6 && st.nskew_merged == 0 && st.nunresolved == 0, "%d cells", out.ncells);
+    NEAR(q.skew_max, skew0, 1e-12);
+    NEAR(st.skew_max_before, skew0, 1e-12);
+    NEAR(st.skew_max_after, skew0, 1e-12);
+    EXPECT(q.nskew == 1 && q.skew_face >= out.ninternal, "%d skewed faces", q.nskew);   /* the bottom wall face */
+    merge_stats_free(&st);
+    mesh_free(&out);
+
+    merge_opts_default(&o);
+    NEAR(o.max_skewness, 4, 0);
+    EXPECT(merge_mesh(&in, &o, &out, &st, &e) == 0, "%s", e.msg);
+    check_merged(&in, &out, &st, 0.5);
+    quality_measure(&out, &q);
+    EXPECT(out.ncells == 5 && st.nskew_merged == 1 && st.nunresolved == 0, "%d cells, %d skew merges", out.ncells,
+           st.nskew_merged);
+    int C0 = out.merge_map[s0];
+    EXPECT(out.merge_map[m0] == C0 && out.merge_map[s1] == C0 && out.merge_map[m1] == C0, "clusters %d %d %d %d", C0,
+           out.merge_map[m0], out.merge_map[s1], out.merge_map[m1]);
+    NEAR(st.skew_max_before, skew0, 1e-12);
+    NEAR(st.skew_max_after, q.skew_max, 1e-12);
+    EXPECT(q.nskew == 0 && q.skew_max < 4, "%d skewed faces, max %g", q.nskew, q.skew_max);
+    /* the union (2,0)+(3,0)+(2,1)+(3,1) and its bottom face */
+    static const double poly2[5][2] = {{2.8125, 0}, {4, 0}, {4, 0.5}, {2.4375, 0.5}, {2.625, 0.25}};
+    polygon_centroid(poly2, 5, C);
+    NEAR(q.skew_max, fabs(2.90625 - C[0]) / fmax(0.4 * C[1], 0.09375), 1e-12);
+    merge_stats_free(&st);
+    mesh_free(&out);
+    mesh_free(&in);
+
+    /* one row: the cluster has no neighbour, so it is reported */
+    Cut2 g1 = {4, 1, unit5, y, 0, 0.1, 1, {{-2.25, 0.8, 0.6}}};
+    cut2(&in, &g1);
+    EXPECT(merge_mesh(&in, &o, &out, &st, &e) == 0, "%s", e.msg);
+    check_merged(&in, &out, &st, 0.5);
+    EXPECT(out.ncells == 1 && st.nunresolved == 1 && st.reason[0] == MERGE_SKEWNESS, "%d cells, %d unresolved",
+           out.ncells, st.nunresolved);
+    NEAR(st.skew_max_after, skew0, 1e-12);
+    if (st.nunresolved) CONTAINS(merge_reason_name(st.reason[0]), "maxSkewness");
+    merge_stats_free(&st);
+    mesh_free(&out);
+    mesh_free(&in);
+}
+
 int main(void)
 {
     RUN(corner_triangle);
@@ -765,6 +866,7 @@ int main(void)
     RUN(prefer_non_slave);
     RUN(plane_3d);
     RUN(unsound_master_refused);
+    RUN(skewness_pass);
     RUN(bad_input);
     return test_summary();
 }

@@ -36,7 +36,8 @@ static const ArgOpt opts[] = {
 static const DictKey merge_keys[] = {
     {"threshold", "0.5", "M_V: cells with V <= M_V x (parent Cartesian volume) are merged, in (0, 1]"},
     {"criterion", "normal", "merge axis: normal = argmax |n_i|, normalSpacing = argmax |n_i h_i|"},
-    {"maxIter", "10", "rounds of re-merging clusters still below the bound (>= 0)"},
+    {"maxIter", "10", "rounds of re-merging clusters still below the bound, and of the quality pass (>= 0)"},
+    {"maxSkewness", "4", "quality pass: clusters with a face skewness above this merge further (0 = off, >= 0)"},
     {NULL, NULL, NULL}};
 
 static const ArgDict dicts[] = {{"system/mergeCellsDict", merge_keys, "  optional; every keyword has a default\n"},
@@ -63,7 +64,8 @@ static int read_opts(const Args *a, MergeOpts *o, Err *e)
         char msg[128];
         rc = !d || dict_check_keys(d, merge_keys, e) || dict_scalar_or(d, "threshold", o->threshold, &o->threshold, e) ||
              dict_choice_or(d, "criterion", criteria, o->criterion, &o->criterion, e) ||
-             dict_label_or(d, "maxIter", o->max_iter, &o->max_iter, e);
+             dict_label_or(d, "maxIter", o->max_iter, &o->max_iter, e) ||
+             dict_scalar_or(d, "maxSkewness", o->max_skewness, &o->max_skewness, e);
         if (!rc && !(o->threshold > 0 && o->threshold <= 1)) {
             snprintf(msg, sizeof msg, "threshold must be in (0, 1], found %g", o->threshold);
             rc = bad_value(e, path, d, "threshold", msg);
@@ -71,6 +73,10 @@ static int read_opts(const Args *a, MergeOpts *o, Err *e)
         if (!rc && o->max_iter < 0) {
             snprintf(msg, sizeof msg, "maxIter must be >= 0, found %d", o->max_iter);
             rc = bad_value(e, path, d, "maxIter", msg);
+        }
+        if (!rc && !(o->max_skewness >= 0)) {
+            snprintf(msg, sizeof msg, "maxSkewness must be >= 0, found %g", o->max_skewness);
+            rc = bad_value(e, path, d, "maxSkewness", msg);
         }
         dict_free(d);
     }
@@ -88,6 +94,8 @@ static void report(FILE *f, const MergeStats *s, const Mesh *m)
     fprintf(f, "  clusters:                %d (%d round%s)\n", s->nclusters, s->niter, s->niter == 1 ? "" : "s");
     fprintf(f, "  smallest volume ratio:   before %.6g, after %.6g (cell %d)\n", s->ratio_min_before,
             s->ratio_min_after, s->ratio_min_cell);
+    fprintf(f, "  max skewness:            before the quality pass %.6g, after %.6g (%d merge%s)\n",
+            s->skew_max_before, s->skew_max_after, s->nskew_merged, s->nskew_merged == 1 ? "" : "s");
     fprintf(f, "  worst aspect ratio:      before %.6g, after %.6g\n", s->aspect_max_before, s->aspect_max_after);
     fprintf(f, "  total volume:            before %.15g, after %.15g (relative difference %.3e)\n", s->vol_before,
             s->vol_after, rel);
@@ -122,8 +130,8 @@ int main(int argc, char **argv)
     if (args_get(&a, &tool, "-gzip")) w.gzip = 1;
     MergeOpts mo;
     if (read_opts(&a, &mo, &e)) err_die(&e);
-    fprintf(a.info, "Merging cells with V <= %g V_cart (criterion %s, maxIter %d)\n", mo.threshold,
-            criteria[mo.criterion], mo.max_iter);
+    fprintf(a.info, "Merging cells with V <= %g V_cart (criterion %s, maxIter %d, maxSkewness %g)\n", mo.threshold,
+            criteria[mo.criterion], mo.max_iter, mo.max_skewness);
 
     fprintf(a.info, "Reading grid from %s\n\n", strcmp(in_dir, "-") ? in_dir : "stdin");
     Mesh grid, m;
@@ -137,6 +145,11 @@ int main(int argc, char **argv)
         err_die(&e2);
     }
     double dt = args_wall(&a) - t0;
+    /* the merged grid's own geometry: an independent check of the volume
+       the merge reports from its members */
+    mesh_geometry(&m);
+    st.vol_after = 0;
+    for (int c = 0; c < m.ncells; c++) st.vol_after += m.cell_vol[c];
     fprintf(a.info, "Merged %d cells in %.3f s (%.3g cells/s)\n\n", grid.ncells, dt, dt > 0 ? grid.ncells / dt : 0.0);
     report(a.info, &st, &m);
     gridio_print_info(a.info, &m);
