@@ -142,6 +142,10 @@ double geometry_exact_volume(const Geometry *g, const double lo[3], const double
    new arrays.  In 2-D (flattened) the section's boundary is sampled in
    the mid-plane.  Used by voronoiGrid (seeds.h). */
 int geometry_sample(const Geometry *g, double h, double **x, double **n, int **leaf);
+/* The same, with unbounded leaves (half-spaces, infinite cylinders)
+   sampled inside the box lo..hi only. */
+int geometry_sample_box(const Geometry *g, double h, const double lo[3], const double hi[3], double **x,
+                        double **n, int **leaf);
 
 /* Patch name and type of a leaf. */
 const char *geometry_leaf_patch(const Geometry *g, int leaf);

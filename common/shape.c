@@ -1067,3 +1067,313 @@ void shape_free(Shape *s)
     s->poly = NULL;
     s->npoly = 0;
 }
+
+/* ---- sampling (shape_sample) ----
+**
+** Structured point sets with exact normals, spacing at most h along every
+** parametric direction (counts are ceil(length / h) intervals, so the
+** ends of every edge are hit exactly):
+**   sphere    latitude rings theta_i = i pi / nt, ring i with
+**             round(2 pi r sin theta_i / h) points, every other ring
+**             turned by half a step; the poles are single points;
+**   cylinder  side rings at ceil(H / h) + 1 axial stations, the first and
+**             last being the rims; end discs as concentric rings about
+**             the centre point;
+**   cone      rings along the slant line, rims and end discs as for the
+**             cylinder, a zero radius end as one apex point;
+**   torus     tube rings (angle v) with round(2 pi (R + r cos v) / h)
+**             points each;
+**   box       the boundary points of the (nx+1)(ny+1)(nz+1) lattice,
+**             so each face is a grid and edges and corners lie exactly on
+**             the box's edges and corners;
+**   polygon   per side an (edge x axial) lattice, the polygon's vertices
+**             as edge lines, cap rims as edge points; caps are the nodes
+**             of a grid over the polygon's bounding rectangle that lie
+**             inside it at least h/2 from its sides;
+**   halfSpace a grid over the plane (frame perp_unit), clipped to lo..hi;
+**   unbounded cylinders and polygons: the same restricted to lo..hi.
+** A point on several faces (edges, corners, rims, polygon vertices) gets
+** the normalised sum of those faces' outward normals, so a seed offset
+** along it stays equidistant from the faces (thesis Fig. 3.16).
+*/
+
+typedef struct Samp {
+    int cnt, cap;
+    double *x, *nv;
+    const double *lo, *hi;   /* clip box (unbounded shapes), or NULL */
+    double tol;              /* clip tolerance */
+} Samp;
+
+static void samp_add(Samp *S, const double x[3], const double n[3])
+{
+    if (S->lo)
+        for (int k = 0; k < 3; k++)
+            if (!(x[k] >= S->lo[k] - S->tol && x[k] <= S->hi[k] + S->tol)) return;
+    if (S->cnt == S->cap) {
+        S->cap = S->cap ? 2 * S->cap : 256;
+        S->x = mem_realloc(S->x, (size_t)S->cap * 3 * sizeof *S->x);
+        S->nv = mem_realloc(S->nv, (size_t)S->cap * 3 * sizeof *S->nv);
+    }
+    double l = norm(n);
+    for (int k = 0; k < 3; k++) {
+        S->x[3 * S->cnt + k] = x[k];
+        S->nv[3 * S->cnt + k] = n[k] / l;
+    }
+    S->cnt++;
+}
+
+/* Intervals of at most h on a length (at least one; bounded so that a
+   tiny h cannot overflow). */
+static int samp_steps(double len, double h)
+{
+    double k = ceil(len / h - 1e-9);
+    return !(k >= 1) ? 1 : k > 1e7 ? 10000000 : (int)k;
+}
+
+static int samp_ring_count(double rho, double h)
+{
+    double m = rho > 0 ? floor(2 * PI * rho / h + 0.5) : 1;
+    return !(m >= 1) ? 1 : m > 1e7 ? 10000000 : (int)m;
+}
+
+typedef struct Frame {
+    double u[3], e1[3], e2[3];
+} Frame;
+
+static void frame_of(const double u[3], Frame *F)
+{
+    memcpy(F->u, u, sizeof F->u);
+    perp_unit(u, F->e1);
+    F->e2[0] = u[1] * F->e1[2] - u[2] * F->e1[1];
+    F->e2[1] = u[2] * F->e1[0] - u[0] * F->e1[2];
+    F->e2[2] = u[0] * F->e1[1] - u[1] * F->e1[0];
+}
+
+/* m points c + rho e(phi_j), phi_j = 2 pi (j + phase) / m, with normals
+   nr e(phi_j) + nu u; rho = 0 gives the one point c. */
+static void samp_ring(Samp *S, const Frame *F, const double c[3], double rho, int m, double phase, double nr,
+                      double nu)
+{
+    if (!(rho > 0)) m = 1;
+    for (int j = 0; j < m; j++) {
+        double ph = 2 * PI * (j + phase) / m, cs = cos(ph), sn = sin(ph), x[3], n[3];
+        for (int k = 0; k < 3; k++) {
+            double e = cs * F->e1[k] + sn * F->e2[k];
+            x[k] = c[k] + rho * e;
+            n[k] = nr * e + nu * F->u[k];
+        }
+        samp_add(S, x, n);
+    }
+}
+
+/* End disc of radius r about c, normal sgn u: concentric rings inside the
+   rim (which the side sampling owns). */
+static void samp_disc(Samp *S, const Frame *F, const double c[3], double r, double h, double sgn)
+{
+    int nr = samp_steps(r, h);
+    for (int k = 0; k < nr; k++) {
+        double rho = r * k / nr;
+        samp_ring(S, F, c, rho, samp_ring_count(rho, h), 0, 0, sgn);
+    }
+}
+
+static void samp_sphere(Samp *S, const Shape *s, double h)
+{
+    static const double z[3] = {0, 0, 1};
+    Frame F;
+    frame_of(z, &F);
+    int nt = samp_steps(PI * s->r1, h);
+    for (int i = 0; i <= nt; i++) {
+        double th = PI * i / nt, st = i == nt ? 0 : sin(th), ct = i == nt ? -1 : cos(th), c[3];
+        for (int k = 0; k < 3; k++) c[k] = s->p[k] + s->r1 * ct * F.u[k];
+        samp_ring(S, &F, c, s->r1 * st, samp_ring_count(s->r1 * st, h), 0.5 * (i % 2), st, ct);
+    }
+}
+
+/* Cylinder and cone: rings along the slant line from the rim at p
+   (radius r1) to the rim at q (radius r2), then the end discs. */
+static void samp_axi(Samp *S, const Shape *s, double h)
+{
+    double u[3], H, r1 = s->r1, r2 = s->kind == SHAPE_CONE ? s->r2 : s->r1;
+    axi_frame(s, u, &H);
+    Frame F;
+    frame_of(u, &F);
+    double k = (r2 - r1) / H, L = sqrt(1 + k * k);
+    int ns = samp_steps(hypot(H, r2 - r1), h);
+    int m = samp_ring_count(fmax(r1, r2), h);
+    for (int i = 0; i <= ns; i++) {
+        double t = (double)i / ns, rho = i == ns ? r2 : r1 + t * (r2 - r1), c[3];
+        for (int j = 0; j < 3; j++) c[j] = i == ns ? s->q[j] : s->p[j] + t * (s->q[j] - s->p[j]);
+        double nu = -k / L + (i == 0 ? -1 : i == ns ? 1 : 0);
+        if (!(rho > 0)) {   /* apex: along the axis, away from the base */
+            samp_ring(S, &F, c, 0, 1, 0, 0, k > 0 ? -1 : 1);
+            continue;
+        }
+        int mi = s->kind == SHAPE_CYLINDER ? m : samp_ring_count(rho, h);
+        samp_ring(S, &F, c, rho, mi, 0.5 * (i % 2), 1 / L, nu);
+    }
+    if (r1 > 0) samp_disc(S, &F, s->p, r1, h, -1);
+    if (r2 > 0) samp_disc(S, &F, s->q, r2, h, 1);
+}
+
+/* Axial range [*a, *b] (from p along unit u) of the box lo..hi. */
+static void samp_box_range(const double p[3], const double u[3], const double lo[3], const double hi[3], double *a,
+                           double *b)
+{
+    *a = INFINITY, *b = -INFINITY;
+    for (int c = 0; c < 8; c++) {
+        double x[3] = {c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]}, w[3];
+        sub(x, p, w);
+        double t = dot(w, u);
+        *a = fmin(*a, t), *b = fmax(*b, t);
+    }
+}
+
+static void samp_infinite_cylinder(Samp *S, const Shape *s, double h, const double lo[3], const double hi[3])
+{
+    double u[3], H, a, b;
+    axi_frame(s, u, &H);
+    Frame F;
+    frame_of(u, &F);
+    samp_box_range(s->p, u, lo, hi, &a, &b);
+    int ns = samp_steps(b - a, h), m = samp_ring_count(s->r1, h);
+    for (int i = 0; i <= ns; i++) {
+        double t = a + (b - a) * i / ns, c[3];
+        for (int j = 0; j < 3; j++) c[j] = s->p[j] + t * u[j];
+        samp_ring(S, &F, c, s->r1, m, 0.5 * (i % 2), 1, 0);
+    }
+}
+
+static void samp_torus(Samp *S, const Shape *s, double h)
+{
+    Frame F;
+    frame_of(s->q, &F);
+    int nv = samp_ring_count(s->r2, h);
+    if (nv < 3) nv = 3;
+    for (int j = 0; j < nv; j++) {
+        double v = 2 * PI * j / nv, rho = s->r1 + s->r2 * cos(v), c[3];
+        for (int k = 0; k < 3; k++) c[k] = s->p[k] + s->r2 * sin(v) * F.u[k];
+        int m = samp_ring_count(rho, h);
+        samp_ring(S, &F, c, rho, m < 3 ? 3 : m, 0.5 * (j % 2), cos(v), sin(v));
+    }
+}
+
+/* Coordinate of node i of n intervals on [a, b], the ends exact. */
+static double samp_node(double a, double b, int i, int n)
+{
+    return i == n ? b : a + (b - a) * i / n;
+}
+
+static void samp_box(Samp *S, const Shape *s, double h)
+{
+    int n[3];
+    for (int k = 0; k < 3; k++) n[k] = samp_steps(s->q[k] - s->p[k], h);
+    for (int i = 0; i <= n[0]; i++)
+        for (int j = 0; j <= n[1]; j++) {
+            int inner = i > 0 && i < n[0] && j > 0 && j < n[1];
+            for (int l = 0; l <= n[2]; l += inner ? n[2] : 1) {
+                int idx[3] = {i, j, l};
+                double x[3], nv[3];
+                for (int k = 0; k < 3; k++) {
+                    x[k] = samp_node(s->p[k], s->q[k], idx[k], n[k]);
+                    nv[k] = idx[k] == 0 ? -1 : idx[k] == n[k] ? 1 : 0;
+                }
+                samp_add(S, x, nv);
+            }
+        }
+}
+
+/* The polygon's sides between z = za and zb (caps where cap_lo / cap_hi),
+   then the caps. */
+static void samp_polygon(Samp *S, const Shape *s, double h, double za, double zb, int cap_lo, int cap_hi)
+{
+    int a = s->axis, iu = poly_u(s), iv = poly_v(s), np = s->npoly;
+    int nz = samp_steps(zb - za, h);
+    for (int e = 0; e < np; e++) {
+        const double *P = s->poly + 2 * e, *Q = s->poly + 2 * ((e + 1) % np);
+        double ne[3], nprev[3];
+        poly_wall_normal(s, e, ne);
+        poly_wall_normal(s, (e + np - 1) % np, nprev);
+        int m = samp_steps(hypot(Q[0] - P[0], Q[1] - P[1]), h);
+        for (int i = 0; i < m; i++)
+            for (int j = 0; j <= nz; j++) {
+                double x[3], nv[3];
+                x[iu] = P[0] + (Q[0] - P[0]) * i / m;
+                x[iv] = P[1] + (Q[1] - P[1]) * i / m;
+                x[a] = samp_node(za, zb, j, nz);
+                for (int k = 0; k < 3; k++) nv[k] = ne[k] + (i == 0 ? nprev[k] : 0);
+                if (j == 0 && cap_lo) nv[a] -= 1;
+                if (j == nz && cap_hi) nv[a] += 1;
+                samp_add(S, x, nv);
+            }
+    }
+    if (!cap_lo && !cap_hi) return;
+    double lo[3], hi[3];
+    shape_bounds(s, lo, hi);
+    int mu = samp_steps(hi[iu] - lo[iu], h), mv = samp_steps(hi[iv] - lo[iv], h);
+    for (int i = 0; i <= mu; i++)
+        for (int j = 0; j <= mv; j++) {
+            double u = samp_node(lo[iu], hi[iu], i, mu), v = samp_node(lo[iv], hi[iv], j, mv);
+            Poly2 P;
+            poly2(s, u, v, &P);
+            if (!P.inside || P.dist < 0.5 * h) continue;
+            for (int c = 0; c < 2; c++) {
+                if (!(c ? cap_hi : cap_lo)) continue;
+                double x[3], nv[3] = {0, 0, 0};
+                x[iu] = u, x[iv] = v, x[a] = c ? zb : za;
+                nv[a] = c ? 1 : -1;
+                samp_add(S, x, nv);
+            }
+        }
+}
+
+static void samp_halfspace(Samp *S, const Shape *s, double h, const double lo[3], const double hi[3])
+{
+    Frame F;
+    frame_of(s->q, &F);
+    double a0, a1, b0, b1;
+    samp_box_range(s->p, F.e1, lo, hi, &a0, &a1);
+    samp_box_range(s->p, F.e2, lo, hi, &b0, &b1);
+    int na = samp_steps(a1 - a0, h), nb = samp_steps(b1 - b0, h);
+    for (int i = 0; i <= na; i++)
+        for (int j = 0; j <= nb; j++) {
+            double a = samp_node(a0, a1, i, na), b = samp_node(b0, b1, j, nb), x[3];
+            for (int k = 0; k < 3; k++) x[k] = s->p[k] + a * F.e1[k] + b * F.e2[k];
+            samp_add(S, x, s->q);
+        }
+}
+
+int shape_sample(const Shape *s, double h, const double lo[3], const double hi[3], double **x, double **n)
+{
+    Samp S = {0, 0, NULL, NULL, NULL, NULL, 0};
+    int unbounded = s->kind == SHAPE_HALFSPACE || (s->kind == SHAPE_CYLINDER && s->infinite)
+                 || (s->kind == SHAPE_POLYGON && !(isfinite(s->lo) && isfinite(s->hi)));
+    if (unbounded && lo && hi) {
+        S.lo = lo, S.hi = hi;
+        for (int k = 0; k < 3; k++) S.tol = fmax(S.tol, 1e-9 * (fabs(lo[k]) + fabs(hi[k])));
+    }
+    if (h > 0 && (!unbounded || S.lo)) {
+        switch (s->kind) {
+        case SHAPE_HALFSPACE: samp_halfspace(&S, s, h, lo, hi); break;
+        case SHAPE_BOX: samp_box(&S, s, h); break;
+        case SHAPE_SPHERE: samp_sphere(&S, s, h); break;
+        case SHAPE_CYLINDER:
+            if (s->infinite) samp_infinite_cylinder(&S, s, h, lo, hi);
+            else samp_axi(&S, s, h);
+            break;
+        case SHAPE_CONE: samp_axi(&S, s, h); break;
+        case SHAPE_TORUS: samp_torus(&S, s, h); break;
+        case SHAPE_POLYGON: {
+            int a = s->axis;
+            double za = isfinite(s->lo) ? s->lo : lo[a], zb = isfinite(s->hi) ? s->hi : hi[a];
+            if (S.lo) za = fmax(za, lo[a]), zb = fmin(zb, hi[a]);
+            if (za < zb) samp_polygon(&S, s, h, za, zb, za == s->lo, zb == s->hi);
+            break;
+        }
+        default: break;
+        }
+    }
+    *x = S.x ? S.x : MEM_NEW(double, 1);
+    *n = S.nv ? S.nv : MEM_NEW(double, 1);
+    return S.cnt;
+}

@@ -1,0 +1,1470 @@
+/*
+** voronoi.c: bounded Voronoi grids (voronoi.h).
+**
+** Design, in two passes.
+**
+** Pass 1, one kept seed at a time: the cell starts as the box (3-D: a
+** convex polyhedron held as a vertex array and polygons of vertex indices,
+** each polygon labelled with the seed across it, or -1 - side for a box
+** side; 2-D: a convex polygon in the plane normal to flat_axis whose edges
+** carry those labels) and is clipped by the bisector half-space of each
+** seed that can still reach it.  Candidates come from a bucket grid over
+** the box, shell by shell (buckets at Chebyshev index distance k), nearest
+** first inside a shell; a seed at distance d can cut the cell only when
+** d/2 < R, R the largest distance from the seed to a cell vertex, so the
+** search ends when the nearest unvisited shell is farther than 2R.  On a
+** Cartesian lattice that is the 26 (2-D: 8) lattice neighbours.
+**
+** Clipping classifies each vertex as in, on (within EPS_CLIP x box size
+** of the plane) or out; nothing happens unless a vertex is out, new
+** vertices are made only on edges from an in to an out vertex (once per
+** edge, parametrised from the in end, so the two polygons sharing the
+** edge get the same point), and the new face is every on or new vertex,
+** sorted by angle about the plane normal.  So a plane that only touches
+** the cell (the diagonal neighbours of a lattice) adds nothing, and each
+** cell is a closed polyhedron: every edge is used by exactly two of its
+** polygons.
+**
+** Each cell's vertices are then welded into the global point list.  A
+** vertex on exactly 3 faces (2-D: 2 edges) is named by the sorted set of
+** its seeds and box sides, the set every cell around it sees; the first
+** cell to meet a name welds it by position, later cells get the same point
+** by name, so welding stays consistent where positions are ill-conditioned
+** (nearly cospherical seeds).  Welding by position: a point closer than
+** VORONOI_MERGE x (box size) to an earlier one is that one (the nearest;
+** an exact copy of an earlier query always gets the earlier answer).  The
+** cell is stored as polygons of global point numbers, sorted by label.
+**
+** Pass 2: the face between kept seeds i < j is the polygon cell i stored;
+** cell j uses its reverse, so the two cells see exactly the same points.
+** 3-D faces of area below VORONOI_MERGE^2 x (box size)^2 whose points lie
+** within a few merge distances of each other collapse to one point (a
+** union of their points), so their neighbours in all cells lose the same
+** points; thin faces longer than that stay (collapsing them would move
+** far-apart points, dropping them alone would open the cells).  Repeated
+** consecutive points are removed and faces left with fewer than 3 points
+** dropped (nfaces_dropped).  Every cell is then checked to be closed (each
+** edge used once in each direction).  A sliver that only one of the cells
+** around an edge resolved, and that welding reduced to a segment, leaves a
+** point inside that edge in some polygons and not in others (a
+** T-junction); such points are inserted into the stored polygons that
+** lack them, and the cells sharing a changed polygon are checked again.  A
+** cell still open is an error naming its seed, never a silently broken
+** grid.  Consequence of merging: face points lie on their bisector to
+** round-off (1e-13 of the box) except near merged points, where they may
+** be off by up to the merge distance.
+**
+** Invariants: cell c is the c-th kept seed; a face's label is the seed
+** across it, so faces towards dropped seeds go to that seed's patch and
+** box faces to side_patch; 2-D cells are prisms between lo and hi along
+** flat_axis, their front and back faces on the side patches of that axis.
+*/
+#include "voronoi.h"
+#include "mem.h"
+#include "meshbuild.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* on-plane tolerance of the clipper, x box size: far above round-off of
+   the vertex coordinates, far below the weld distance */
+#define EPS_CLIP 1e-13
+/* slack on the reach test d/2 < R */
+#define REACH_SLACK (1.0 + 1e-9)
+
+/* Grows *p (of *cap elements of size elem) to hold need elements. */
+static void need(void *p, int *cap, size_t need_n, size_t elem)
+{
+    if (need_n <= (size_t)*cap) return;
+    size_t c = *cap > 0 ? (size_t)*cap : 16;
+    while (c < need_n) c += c / 2 + 16;
+    *(void **)p = mem_realloc(*(void **)p, c * elem);
+    *cap = (int)c;
+}
+
+static double sq(double x) { return x * x; }
+
+/* ---- bucket grid ---------------------------------------------------- */
+
+/* Seeds sorted into a uniform grid over the box; seeds outside the box go
+   to the border buckets, which only puts them in a shell nearer than they
+   are, so the search stays exact. */
+typedef struct Buckets {
+    int n[3];
+    double org[3], h[3];
+    int *start;   /* nbuckets+1 */
+    int *seed;    /* nseeds, bucket by bucket, in seed order */
+} Buckets;
+
+static int bucket_axis(const Buckets *g, int a, double x)
+{
+    double t = (x - g->org[a]) / g->h[a];
+    if (!(t > 0)) return 0;
+    if (t >= g->n[a]) return g->n[a] - 1;
+    return (int)t;
+}
+
+static int bucket_of(const Buckets *g, const double x[3])
+{
+    int b[3];
+    for (int a = 0; a < 3; a++) b[a] = bucket_axis(g, a, x[a]);
+    return b[0] + g->n[0] * (b[1] + g->n[1] * b[2]);
+}
+
+static void buckets_build(Buckets *g, const VoronoiInput *in)
+{
+    int dims = in->flat_axis >= 0 ? 2 : 3;
+    double vol = 1;
+    for (int a = 0; a < 3; a++)
+        if (a != in->flat_axis) vol *= in->hi[a] - in->lo[a];
+    /* about one seed per bucket */
+    double h = pow(vol / in->nseeds, 1.0 / dims);
+    size_t total = 1;
+    for (int a = 0; a < 3; a++) {
+        double ext = in->hi[a] - in->lo[a];
+        double n = a == in->flat_axis ? 1 : floor(ext / h + 0.5);
+        if (n < 1) n = 1;
+        if (n > 1 << 20) n = 1 << 20;
+        g->n[a] = (int)n;
+        g->org[a] = in->lo[a];
+        g->h[a] = ext / n;
+        total *= (size_t)g->n[a];
+    }
+    /* a box much longer than wide can round to many more buckets than
+       seeds; halve the finest axis until the count is sane */
+    while (total > 4 * (size_t)in->nseeds + 64) {
+        int a = -1;
+        for (int k = 0; k < 3; k++)
+            if (g->n[k] > 1 && (a < 0 || g->n[k] > g->n[a])) a = k;
+        total /= (size_t)g->n[a];
+        g->n[a] = (g->n[a] + 1) / 2;
+        g->h[a] = (in->hi[a] - in->lo[a]) / g->n[a];
+        total *= (size_t)g->n[a];
+    }
+    g->start = mem_calloc(total + 1, sizeof(int));
+    g->seed = mem_alloc(sizeof(int) * (size_t)in->nseeds);
+    int *bk = mem_alloc(sizeof(int) * (size_t)in->nseeds);
+    for (int i = 0; i < in->nseeds; i++) {
+        double x[3] = {in->x[3 * i], in->x[3 * i + 1], in->x[3 * i + 2]};
+        if (in->flat_axis >= 0) x[in->flat_axis] = in->lo[in->flat_axis];
+        bk[i] = bucket_of(g, x);
+        g->start[bk[i] + 1]++;
+    }
+    for (size_t b = 0; b < total; b++) g->start[b + 1] += g->start[b];
+    int *fill = mem_alloc(sizeof(int) * total);
+    memcpy(fill, g->start, sizeof(int) * total);
+    for (int i = 0; i < in->nseeds; i++) g->seed[fill[bk[i]]++] = i;
+    free(fill);
+    free(bk);
+}
+
+static void buckets_free(Buckets *g)
+{
+    free(g->start);
+    free(g->seed);
+}
+
+/* Distance from x (in bucket b) to the nearest point of the buckets at
+   index distance >= k from b; INFINITY when there are none. */
+static double shell_dist(const Buckets *g, const int b[3], int k, const double x[3])
+{
+    double d = INFINITY;
+    for (int a = 0; a < 3; a++) {
+        if (b[a] - k >= 0) {
+            double t = x[a] - (g->org[a] + (b[a] - k + 1) * g->h[a]);
+            if (t < d) d = t;
+        }
+        if (b[a] + k < g->n[a]) {
+            double t = g->org[a] + (b[a] + k) * g->h[a] - x[a];
+            if (t < d) d = t;
+        }
+    }
+    return d;
+}
+
+typedef struct Cand {
+    double d2;
+    int j;
+} Cand;
+
+/* The neighbour search of one seed; the clipper reads cand[0..n). */
+typedef struct Search {
+    Cand *cand;
+    int n, cap;
+} Search;
+
+/* Appends the seeds of the buckets of shell k around b (except self)
+   closer than sqrt(r2max), sorted by distance. */
+static void shell_collect(Search *s, const Buckets *g, const VoronoiInput *in, int self, const int b[3],
+                          int k, const double x[3], double r2max)
+{
+    s->n = 0;
+    int flat = in->flat_axis;
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; a++) {
+        lo[a] = b[a] - k < 0 ? 0 : b[a] - k;
+        hi[a] = b[a] + k >= g->n[a] ? g->n[a] - 1 : b[a] + k;
+    }
+    for (int iz = lo[2]; iz <= hi[2]; iz++)
+        for (int iy = lo[1]; iy <= hi[1]; iy++) {
+            int edge = abs(iz - b[2]) == k || abs(iy - b[1]) == k;
+            int step = edge || k == 0 ? 1 : 2 * k;
+            for (int ix = b[0] - k; ix <= b[0] + k; ix += step) {
+                if (ix < 0 || ix >= g->n[0]) continue;
+                int bk = ix + g->n[0] * (iy + g->n[1] * iz);
+                for (int q = g->start[bk]; q < g->start[bk + 1]; q++) {
+                    int j = g->seed[q];
+                    if (j == self) continue;
+                    const double *y = in->x + 3 * j;
+                    double d2 = 0;
+                    for (int a = 0; a < 3; a++)
+                        if (a != flat) d2 += sq(y[a] - x[a]);
+                    if (d2 > r2max) continue;
+                    need(&s->cand, &s->cap, (size_t)s->n + 1, sizeof(Cand));
+                    int p = s->n++;
+                    while (p > 0 && s->cand[p - 1].d2 > d2) {
+                        s->cand[p] = s->cand[p - 1];
+                        p--;
+                    }
+                    s->cand[p] = (Cand){d2, j};
+                }
+            }
+        }
+}
+
+/* ---- 3-D clipper ---------------------------------------------------- */
+
+typedef struct Poly {
+    int nv, nf, ni;
+    int vcap, fcap, ocap, icap;
+    double *v;    /* 3*nv */
+    int *lab;     /* nf: seed across the face, or -1 - side */
+    int *off;     /* nf+1 */
+    int *idx;
+} Poly;
+
+typedef struct Clip {
+    Poly p[2];
+    int cur;
+    double *d;
+    signed char *cls;
+    int *vmap;
+    int dcap, ccap, mcap;
+    int *edge;    /* 3 per new vertex: the in end, the out end, the vertex */
+    int ecap, ne;
+    int *capv;    /* the new face's vertices */
+    double *capk; /* and their angles */
+    int cvcap, ckcap;
+} Clip;
+
+static void poly_reserve(Poly *p, int nv, int nf, int ni)
+{
+    need(&p->v, &p->vcap, 3 * (size_t)nv, sizeof(double));
+    need(&p->lab, &p->fcap, (size_t)nf, sizeof(int));
+    need(&p->off, &p->ocap, (size_t)nf + 1, sizeof(int));
+    need(&p->idx, &p->icap, (size_t)ni, sizeof(int));
+}
+
+static void clip_free(Clip *c)
+{
+    for (int k = 0; k < 2; k++) {
+        free(c->p[k].v);
+        free(c->p[k].lab);
+        free(c->p[k].off);
+        free(c->p[k].idx);
+    }
+    free(c->d);
+    free(c->cls);
+    free(c->vmap);
+    free(c->edge);
+    free(c->capv);
+    free(c->capk);
+}
+
+/* The box as the starting polyhedron; vertex v has bit 0 set for x = hi,
+   bit 1 for y, bit 2 for z; faces in side order, outward by the right
+   hand rule. */
+static void poly_box(Clip *c, const double lo[3], const double hi[3])
+{
+    static const int face[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                   {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    c->cur = 0;
+    Poly *p = &c->p[0];
+    poly_reserve(p, 8, 6, 24);
+    for (int v = 0; v < 8; v++)
+        for (int a = 0; a < 3; a++) p->v[3 * v + a] = (v >> a) & 1 ? hi[a] : lo[a];
+    p->nv = 8;
+    p->nf = 6;
+    p->ni = 24;
+    p->off[0] = 0;
+    for (int s = 0; s < 6; s++) {
+        p->lab[s] = -1 - s;
+        memcpy(p->idx + 4 * s, face[s], sizeof face[s]);
+        p->off[s + 1] = 4 * (s + 1);
+    }
+}
+
+/* Monotone in the angle of (x, y), in [0, 4): cheaper than atan2. */
+static double pseudo_angle(double x, double y)
+{
+    double r = x / (fabs(x) + fabs(y));
+    return y < 0 ? 3 + r : 1 - r;
+}
+
+/* The vertex where the plane crosses edge (in, out) of P, made once. */
+static int edge_vertex(Clip *c, const Poly *P, Poly *Q, int a, int b)
+{
+    int in = c->cls[a] < 0 ? a : b, out = in == a ? b : a;
+    for (int k = 0; k < c->ne; k++)
+        if (c->edge[3 * k] == in && c->edge[3 * k + 1] == out) return c->edge[3 * k + 2];
+    double t = c->d[in] / (c->d[in] - c->d[out]);
+    const double *vi = P->v + 3 * in, *vo = P->v + 3 * out;
+    double *w = Q->v + 3 * Q->nv;
+    for (int k = 0; k < 3; k++) w[k] = vi[k] + t * (vo[k] - vi[k]);
+    need(&c->edge, &c->ecap, 3 * ((size_t)c->ne + 1), sizeof(int));
+    c->edge[3 * c->ne] = in;
+    c->edge[3 * c->ne + 1] = out;
+    c->edge[3 * c->ne + 2] = Q->nv;
+    c->ne++;
+    return Q->nv++;
+}
+
+/* Appends to Q the face of the vertices capv[0..n) (all on the plane of
+   unit normal nrm), ordered counter-clockwise about nrm. */
+static void cap_face(Clip *c, Poly *Q, int n, const double nrm[3], int lab)
+{
+    double m[3] = {0, 0, 0};
+    for (int k = 0; k < n; k++)
+        for (int a = 0; a < 3; a++) m[a] += Q->v[3 * c->capv[k] + a] / n;
+    /* u perpendicular to nrm, v = nrm x u, so (u, v, nrm) is right-handed */
+    int ax = fabs(nrm[0]) < fabs(nrm[1]) ? (fabs(nrm[0]) < fabs(nrm[2]) ? 0 : 2)
+                                         : (fabs(nrm[1]) < fabs(nrm[2]) ? 1 : 2);
+    double e[3] = {0, 0, 0}, u[3], v[3];
+    e[ax] = 1;
+    u[0] = nrm[1] * e[2] - nrm[2] * e[1];
+    u[1] = nrm[2] * e[0] - nrm[0] * e[2];
+    u[2] = nrm[0] * e[1] - nrm[1] * e[0];
+    v[0] = nrm[1] * u[2] - nrm[2] * u[1];
+    v[1] = nrm[2] * u[0] - nrm[0] * u[2];
+    v[2] = nrm[0] * u[1] - nrm[1] * u[0];
+    need(&c->capk, &c->ckcap, (size_t)n, sizeof(double));
+    for (int k = 0; k < n; k++) {
+        const double *p = Q->v + 3 * c->capv[k];
+        double r[3] = {p[0] - m[0], p[1] - m[1], p[2] - m[2]};
+        double key = pseudo_angle(r[0] * u[0] + r[1] * u[1] + r[2] * u[2], r[0] * v[0] + r[1] * v[1] + r[2] * v[2]);
+        int vk = c->capv[k], q = k;
+        while (q > 0 && c->capk[q - 1] > key) {
+            c->capk[q] = c->capk[q - 1];
+            c->capv[q] = c->capv[q - 1];
+            q--;
+        }
+        c->capk[q] = key;
+        c->capv[q] = vk;
+    }
+    memcpy(Q->idx + Q->ni, c->capv, sizeof(int) * (size_t)n);
+    Q->ni += n;
+    Q->lab[Q->nf] = lab;
+    Q->off[++Q->nf] = Q->ni;
+}
+
+/* Clips the cell by the half-space nrm.x <= off (nrm a unit vector),
+   labelling the new face lab; eps: on-plane tolerance.  Returns 1 when
+   something was cut off. */
+static int clip3(Clip *c, const double nrm[3], double off, double eps, int lab)
+{
+    Poly *P = &c->p[c->cur], *Q = &c->p[1 - c->cur];
+    need(&c->d, &c->dcap, (size_t)P->nv, sizeof(double));
+    need(&c->cls, &c->ccap, (size_t)P->nv, 1);
+    need(&c->vmap, &c->mcap, (size_t)P->nv, sizeof(int));
+    int nout = 0;
+    for (int k = 0; k < P->nv; k++) {
+        const double *v = P->v + 3 * k;
+        double s = nrm[0] * v[0] + nrm[1] * v[1] + nrm[2] * v[2] - off;
+        c->d[k] = s;
+        c->cls[k] = s > eps ? 1 : s < -eps ? -1 : 0;
+        nout += s > eps;
+    }
+    if (!nout) return 0;
+    /* new vertices: at most one per edge, ni/2 edges */
+    poly_reserve(Q, P->nv + P->ni / 2 + 1, P->nf + 1, 3 * P->ni + P->nv + 3);
+    int nk = 0;
+    for (int k = 0; k < P->nv; k++) {
+        if (c->cls[k] > 0) {
+            c->vmap[k] = -1;
+            continue;
+        }
+        memcpy(Q->v + 3 * nk, P->v + 3 * k, 3 * sizeof(double));
+        c->vmap[k] = nk++;
+    }
+    Q->nv = nk;
+    Q->nf = Q->ni = 0;
+    Q->off[0] = 0;
+    c->ne = 0;
+    for (int f = 0; f < P->nf; f++) {
+        int s = P->off[f], e = P->off[f + 1], start = Q->ni;
+        for (int q = s; q < e; q++) {
+            int a = P->idx[q], b = P->idx[q + 1 < e ? q + 1 : s];
+            if (c->cls[a] <= 0) Q->idx[Q->ni++] = c->vmap[a];
+            if (c->cls[a] * c->cls[b] < 0) {
+                int w = edge_vertex(c, P, Q, a, b);
+                Q->idx[Q->ni++] = w;
+            }
+        }
+        if (Q->ni - start >= 3) {
+            Q->lab[Q->nf] = P->lab[f];
+            Q->off[++Q->nf] = Q->ni;
+        } else {
+            Q->ni = start;
+        }
+    }
+    int ncap = 0;
+    need(&c->capv, &c->cvcap, (size_t)Q->nv, sizeof(int));
+    for (int k = 0; k < P->nv; k++)
+        if (c->cls[k] == 0) c->capv[ncap++] = c->vmap[k];
+    for (int k = nk; k < Q->nv; k++) c->capv[ncap++] = k;
+    if (ncap >= 3) cap_face(c, Q, ncap, nrm, lab);
+    c->cur = 1 - c->cur;
+    return 1;
+}
+
+/* ---- 2-D clipper ---------------------------------------------------- */
+
+/* Convex polygon in the (u, v) plane, counter-clockwise; edge k runs from
+   vertex k to k+1 and has label lab[k]. */
+typedef struct Poly2 {
+    int n, cap, lcap;
+    double *x;    /* 2*n */
+    int *lab;
+} Poly2;
+
+typedef struct Clip2 {
+    Poly2 p[2];
+    int cur;
+    double *d;
+    int dcap;
+} Clip2;
+
+static void poly2_reserve(Poly2 *p, int n)
+{
+    need(&p->x, &p->cap, 2 * (size_t)n, sizeof(double));
+    need(&p->lab, &p->lcap, (size_t)n, sizeof(int));
+}
+
+static void clip2_free(Clip2 *c)
+{
+    for (int k = 0; k < 2; k++) {
+        free(c->p[k].x);
+        free(c->p[k].lab);
+    }
+    free(c->d);
+}
+
+static void poly2_push(Poly2 *Q, double u, double v, int lab)
+{
+    Q->x[2 * Q->n] = u;
+    Q->x[2 * Q->n + 1] = v;
+    Q->lab[Q->n++] = lab;
+}
+
+/* Clips by nrm.x <= off in the plane (nrm a unit 2-vector). */
+static int clip2(Clip2 *c, const double nrm[2], double off, double eps, int lab)
+{
+    Poly2 *P = &c->p[c->cur], *Q = &c->p[1 - c->cur];
+    need(&c->d, &c->dcap, (size_t)P->n, sizeof(double));
+    int nout = 0;
+    for (int k = 0; k < P->n; k++) {
+        double s = nrm[0] * P->x[2 * k] + nrm[1] * P->x[2 * k + 1] - off;
+        c->d[k] = s;
+        nout += s > eps;
+    }
+    if (!nout) return 0;
+    poly2_reserve(Q, P->n + 2);
+    Q->n = 0;
+    for (int k = 0; k < P->n; k++) {
+        int k1 = k + 1 < P->n ? k + 1 : 0;
+        double da = c->d[k], db = c->d[k1];
+        int ca = da > eps ? 1 : da < -eps ? -1 : 0, cb = db > eps ? 1 : db < -eps ? -1 : 0;
+        const double *a = P->x + 2 * k, *b = P->x + 2 * k1;
+        if (ca <= 0) poly2_push(Q, a[0], a[1], ca == 0 && cb > 0 ? lab : P->lab[k]);
+        if (ca < 0 && cb > 0) {
+            double t = da / (da - db);
+            poly2_push(Q, a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), lab);
+        } else if (ca > 0 && cb < 0) {
+            double t = db / (db - da);
+            poly2_push(Q, b[0] + t * (a[0] - b[0]), b[1] + t * (a[1] - b[1]), P->lab[k]);
+        }
+    }
+    c->cur = 1 - c->cur;
+    return 1;
+}
+
+/* ---- welding -------------------------------------------------------- */
+
+/* Global points, found by position.  Every distinct coordinate triple
+   handed in is kept as an entry with the point it became, chained in a
+   uniform grid (the seed buckets shifted by half a bucket, so the corners
+   of a Cartesian lattice's cells fall on bucket centres); a query within
+   tol of a bucket's side also looks across it, so every entry within tol
+   is seen.  The nearest entry wins, and an exact copy of an earlier query
+   is at distance 0: a vertex computed bitwise identically by two cells
+   always gets the same point, whatever was added in between.  Chains grow
+   in the order cells are made, so a query touches memory made recently
+   (a hash of the coordinates would miss the cache on every query). */
+typedef struct Weld {
+    double tol, org[3], h[3];
+    int n[3];
+    int *head;        /* per bucket: last entry, -1 */
+    double *x;        /* 3 per entry */
+    int *id, *next;   /* per entry */
+    int nent, xcap, icap, ncap;
+    double *pts;      /* 3 per point */
+    int npts, pcap;
+} Weld;
+
+static void weld_init(Weld *w, const Buckets *g, double tol, size_t expect)
+{
+    memset(w, 0, sizeof *w);
+    w->tol = tol;
+    size_t nb = 1;
+    for (int a = 0; a < 3; a++) {
+        w->n[a] = g->n[a] + 1;
+        w->h[a] = g->h[a];
+        w->org[a] = g->org[a] - 0.5 * g->h[a];
+        nb *= (size_t)w->n[a];
+    }
+    w->head = mem_alloc(sizeof(int) * nb);
+    memset(w->head, 0xff, sizeof(int) * nb);
+    need(&w->x, &w->xcap, 3 * expect, sizeof(double));
+    need(&w->id, &w->icap, expect, sizeof(int));
+    need(&w->next, &w->ncap, expect, sizeof(int));
+    need(&w->pts, &w->pcap, 3 * expect, sizeof(double));
+}
+
+static void weld_free(Weld *w)
+{
+    free(w->head);
+    free(w->x);
+    free(w->id);
+    free(w->next);
+    free(w->pts);
+}
+
+static int weld_axis(const Weld *w, int a, double x)
+{
+    double t = (x - w->org[a]) / w->h[a];
+    if (!(t > 0)) return 0;
+    if (t >= w->n[a]) return w->n[a] - 1;
+    return (int)t;
+}
+
+/* The number of the point at x (made when there is none within tol). */
+static int weld_point(Weld *w, const double x[3])
+{
+    int k[3], lo[3], hi[3];
+    for (int a = 0; a < 3; a++) {
+        k[a] = weld_axis(w, a, x[a]);
+        lo[a] = weld_axis(w, a, x[a] - w->tol);
+        hi[a] = weld_axis(w, a, x[a] + w->tol);
+    }
+    int best = -1;
+    double bd = w->tol * w->tol;
+    for (int iz = lo[2]; iz <= hi[2]; iz++)
+        for (int iy = lo[1]; iy <= hi[1]; iy++)
+            for (int ix = lo[0]; ix <= hi[0]; ix++)
+                for (int q = w->head[ix + w->n[0] * (iy + w->n[1] * iz)]; q >= 0; q = w->next[q]) {
+                    const double *p = w->x + 3 * q;
+                    double d2 = sq(p[0] - x[0]) + sq(p[1] - x[1]) + sq(p[2] - x[2]);
+                    if (d2 == 0) return w->id[q];
+                    if (d2 <= bd) {
+                        bd = d2;
+                        best = w->id[q];
+                    }
+                }
+    if (best < 0) {
+        need(&w->pts, &w->pcap, 3 * ((size_t)w->npts + 1), sizeof(double));
+        memcpy(w->pts + 3 * w->npts, x, 3 * sizeof(double));
+        best = w->npts++;
+    }
+    int q = w->nent++;
+    need(&w->x, &w->xcap, 3 * (size_t)w->nent, sizeof(double));
+    need(&w->id, &w->icap, (size_t)w->nent, sizeof(int));
+    need(&w->next, &w->ncap, (size_t)w->nent, sizeof(int));
+    memcpy(w->x + 3 * q, x, 3 * sizeof(double));
+    w->id[q] = best;
+    int *head = &w->head[k[0] + w->n[0] * (k[1] + w->n[1] * k[2])];
+    w->next[q] = *head;
+    *head = q;
+    return best;
+}
+
+/* Voronoi vertices by name: a vertex of seed i's cell on exactly dim
+   faces (3 in 3-D, 2 in 2-D) is the vertex of the sorted set {i, labels},
+   the same set every cell around it sees (unless the vertex is
+   degenerate).  Naming them makes the welding consistent even where their
+   positions are ill-conditioned (nearly cospherical seeds): the first cell
+   to meet a vertex welds it by position, every later one gets the same
+   point by name.  Names are chained on their lowest seed. */
+typedef struct Names {
+    int *head;        /* per seed: last entry, -1 */
+    int32_t *key;     /* 4 per entry */
+    int *id, *next;
+    int nent, kcap, icap, ncap;
+} Names;
+
+static void names_init(Names *t, int nseeds, size_t expect)
+{
+    memset(t, 0, sizeof *t);
+    t->head = mem_alloc(sizeof(int) * (size_t)nseeds);
+    memset(t->head, 0xff, sizeof(int) * (size_t)nseeds);
+    need(&t->key, &t->kcap, 4 * expect, sizeof(int32_t));
+    need(&t->id, &t->icap, expect, sizeof(int));
+    need(&t->next, &t->ncap, expect, sizeof(int));
+}
+
+static void names_free(Names *t)
+{
+    free(t->head);
+    free(t->key);
+    free(t->id);
+    free(t->next);
+}
+
+/* The sorted name of the vertex of seed i on faces lab[0..dim); box sides
+   are negative, so they sort first; unused places are INT32_MAX.  Returns
+   the lowest seed of the name. */
+static int vertex_name(int i, const int *lab, int dim, int32_t k[4])
+{
+    int n = 0;
+    for (int q = -1; q < dim; q++) {
+        int l = q < 0 ? i : lab[q], p = n++;
+        while (p > 0 && k[p - 1] > l) {
+            k[p] = k[p - 1];
+            p--;
+        }
+        k[p] = l;
+    }
+    while (n < 4) k[n++] = INT32_MAX;
+    int q = 0;
+    while (k[q] < 0) q++;
+    return k[q];
+}
+
+/* The point of a vertex: by name when it has one (k != NULL, lowest seed
+   s), else by position. */
+static int weld_vertex(Weld *w, Names *t, const int32_t *k, int s, const double x[3])
+{
+    if (!k) return weld_point(w, x);
+    for (int q = t->head[s]; q >= 0; q = t->next[q])
+        if (!memcmp(t->key + 4 * q, k, 4 * sizeof(int32_t))) return t->id[q];
+    int id = weld_point(w, x), q = t->nent++;
+    need(&t->key, &t->kcap, 4 * (size_t)t->nent, sizeof(int32_t));
+    need(&t->id, &t->icap, (size_t)t->nent, sizeof(int));
+    need(&t->next, &t->ncap, (size_t)t->nent, sizeof(int));
+    memcpy(t->key + 4 * q, k, 4 * sizeof(int32_t));
+    t->id[q] = id;
+    t->next[q] = t->head[s];
+    t->head[s] = q;
+    return id;
+}
+
+/* ---- the cells as polygons of global points ------------------------- */
+
+typedef struct Store {
+    int ncells;
+    int *cell_off;            /* ncells+1: faces of each cell */
+    int nf, fcap, lcap, ocap;
+    int *lab;                 /* per face, sorted inside a cell */
+    int *off;                 /* nf+1 */
+    int ni, icap;
+    int *idx;
+} Store;
+
+static void store_free(Store *s)
+{
+    free(s->cell_off);
+    free(s->lab);
+    free(s->off);
+    free(s->idx);
+}
+
+static void store_face(Store *s, int lab, const int *pts, int n, int rev)
+{
+    need(&s->lab, &s->lcap, (size_t)s->nf + 1, sizeof(int));
+    need(&s->off, &s->ocap, (size_t)s->nf + 2, sizeof(int));
+    need(&s->idx, &s->icap, (size_t)s->ni + (size_t)n, sizeof(int));
+    if (s->nf == 0) s->off[0] = 0;
+    for (int k = 0; k < n; k++) s->idx[s->ni + k] = rev ? pts[n - 1 - k] : pts[k];
+    s->ni += n;
+    s->lab[s->nf] = lab;
+    s->off[++s->nf] = s->ni;
+}
+
+/* Sorts the last cell's faces (from face f0) by label; a cell has a few
+   dozen faces, so insertion sort of an index permutation. */
+static void store_sort_cell(Store *s, int f0, int **tmp, int *tcap)
+{
+    int nf = s->nf - f0, ni = s->ni - s->off[f0];
+    need(tmp, tcap, (size_t)(3 * nf + ni + 1), sizeof(int));
+    int *perm = *tmp, *lab = perm + nf, *off_old = lab + nf, *buf = off_old + nf + 1;
+    int sorted = 1;
+    for (int k = 0; k < nf; k++) {
+        int l = s->lab[f0 + k], q = k;
+        if (q > 0 && s->lab[f0 + k - 1] > l) sorted = 0;
+        while (q > 0 && s->lab[f0 + perm[q - 1]] > l) {
+            perm[q] = perm[q - 1];
+            q--;
+        }
+        perm[q] = k;
+    }
+    if (sorted) return;
+    int base = s->off[f0], o = 0;
+    memcpy(buf, s->idx + base, sizeof(int) * (size_t)ni);
+    for (int k = 0; k < nf; k++) lab[k] = s->lab[f0 + k];
+    memcpy(off_old, s->off + f0, sizeof(int) * (size_t)(nf + 1));
+    for (int k = 0; k < nf; k++) {
+        int f = perm[k], a = off_old[f] - base, n = off_old[f + 1] - off_old[f];
+        memcpy(s->idx + base + o, buf + a, sizeof(int) * (size_t)n);
+        o += n;
+        s->lab[f0 + k] = lab[f];
+        s->off[f0 + k + 1] = base + o;
+    }
+}
+
+/* ---- pass 1: the cells ---------------------------------------------- */
+
+typedef struct Build {
+    const VoronoiInput *in;
+    Buckets g;
+    Search s;
+    Clip c3;
+    Clip2 c2;
+    Weld w;
+    Names names;
+    Store st;
+    double L, eps;
+    int *gid;           /* global point of each cell vertex */
+    int gcap;
+    int *vlab;          /* per cell vertex: face count, three face labels */
+    int vlcap;
+    int *tmp;
+    int tcap;
+} Build;
+
+static int coincide(const VoronoiInput *in, int i, int j, Err *e)
+{
+    return err_set(e, NULL, 0, "voronoi: seeds %d and %d coincide (%g %g %g)", i, j, in->x[3 * i],
+                   in->x[3 * i + 1], in->x[3 * i + 2]);
+}
+
+/* Bisector clipping of seed i's cell, shell by shell; clip(ctx, j, d2)
+   returns the cell's new squared radius. */
+static int cell_search(Build *B, int i, double r2, double (*clip)(Build *, int, int, double), Err *e)
+{
+    const VoronoiInput *in = B->in;
+    double x[3] = {in->x[3 * i], in->x[3 * i + 1], in->x[3 * i + 2]};
+    if (in->flat_axis >= 0) x[in->flat_axis] = in->lo[in->flat_axis];
+    int b[3];
+    for (int a = 0; a < 3; a++) b[a] = bucket_axis(&B->g, a, x[a]);
+    double dup2 = sq(VORONOI_MERGE * B->L);
+    for (int k = 0;; k++) {
+        if (k > 0) {
+            double sd = shell_dist(&B->g, b, k, x);
+            if (sd == INFINITY) break;
+            if (sd > 0 && sd * sd > 4 * r2 * REACH_SLACK) break;
+        }
+        shell_collect(&B->s, &B->g, in, i, b, k, x, 4 * r2 * REACH_SLACK);
+        for (int q = 0; q < B->s.n; q++) {
+            Cand cd = B->s.cand[q];
+            if (cd.d2 > 4 * r2 * REACH_SLACK) break;
+            if (cd.d2 <= dup2) return coincide(in, i, cd.j, e);
+            r2 = clip(B, i, cd.j, r2);
+        }
+    }
+    return 0;
+}
+
+/* Squared distance from x to the farthest vertex of P. */
+static double poly_radius3(const Poly *P, const double *x)
+{
+    double r2 = 0;
+    for (int k = 0; k < P->nv; k++) {
+        double d = sq(P->v[3 * k] - x[0]) + sq(P->v[3 * k + 1] - x[1]) + sq(P->v[3 * k + 2] - x[2]);
+        if (d > r2) r2 = d;
+    }
+    return r2;
+}
+
+static double clip3_seed(Build *B, int i, int j, double r2)
+{
+    const double *xi = B->in->x + 3 * i, *xj = B->in->x + 3 * j;
+    double n[3], m[3], len = 0;
+    for (int a = 0; a < 3; a++) {
+        n[a] = xj[a] - xi[a];
+        m[a] = 0.5 * (xi[a] + xj[a]);
+        len += n[a] * n[a];
+    }
+    len = sqrt(len);
+    for (int a = 0; a < 3; a++) n[a] /= len;
+    if (!clip3(&B->c3, n, n[0] * m[0] + n[1] * m[1] + n[2] * m[2], B->eps, j)) return r2;
+    return poly_radius3(&B->c3.p[B->c3.cur], xi);
+}
+
+static int cell3(Build *B, int i, Err *e)
+{
+    const VoronoiInput *in = B->in;
+    poly_box(&B->c3, in->lo, in->hi);
+    if (cell_search(B, i, poly_radius3(&B->c3.p[0], in->x + 3 * i), clip3_seed, e)) return -1;
+    Poly *P = &B->c3.p[B->c3.cur];
+    if (P->nf < 4) return err_set(e, NULL, 0, "voronoi: the cell of seed %d is empty", i);
+    need(&B->gid, &B->gcap, (size_t)P->nv, sizeof(int));
+    need(&B->vlab, &B->vlcap, 4 * (size_t)P->nv, sizeof(int));
+    for (int k = 0; k < P->nv; k++) B->gid[k] = B->vlab[4 * k] = 0;
+    for (int f = 0; f < P->nf; f++)
+        for (int q = P->off[f]; q < P->off[f + 1]; q++) {
+            int *vl = B->vlab + 4 * P->idx[q];
+            if (vl[0] < 3) vl[1 + vl[0]] = P->lab[f];
+            vl[0]++;
+        }
+    for (int k = 0; k < P->nv; k++) B->gid[k] = -1;
+    int f0 = B->st.nf;
+    need(&B->tmp, &B->tcap, (size_t)P->ni, sizeof(int));
+    int *pts = B->tmp;
+    for (int f = 0; f < P->nf; f++) {
+        int s = P->off[f], n = P->off[f + 1] - s;
+        for (int q = 0; q < n; q++) {
+            int v = P->idx[s + q];
+            if (B->gid[v] < 0) {
+                int32_t key[4];
+                int named = B->vlab[4 * v] == 3, low = named ? vertex_name(i, B->vlab + 4 * v + 1, 3, key) : 0;
+                B->gid[v] = weld_vertex(&B->w, &B->names, named ? key : NULL, low, P->v + 3 * v);
+            }
+            pts[q] = B->gid[v];
+        }
+        store_face(&B->st, P->lab[f], pts, n, 0);
+    }
+    store_sort_cell(&B->st, f0, &B->tmp, &B->tcap);
+    return 0;
+}
+
+static double clip2_seed(Build *B, int i, int j, double r2)
+{
+    int ua = (B->in->flat_axis + 1) % 3, va = (B->in->flat_axis + 2) % 3;
+    const double *xi = B->in->x + 3 * i, *xj = B->in->x + 3 * j;
+    double n[2] = {xj[ua] - xi[ua], xj[va] - xi[va]};
+    double len = sqrt(n[0] * n[0] + n[1] * n[1]);
+    n[0] /= len;
+    n[1] /= len;
+    double off = n[0] * 0.5 * (xi[ua] + xj[ua]) + n[1] * 0.5 * (xi[va] + xj[va]);
+    if (!clip2(&B->c2, n, off, B->eps, j)) return r2;
+    const Poly2 *P = &B->c2.p[B->c2.cur];
+    r2 = 0;
+    for (int k = 0; k < P->n; k++) {
+        double d = sq(P->x[2 * k] - xi[ua]) + sq(P->x[2 * k + 1] - xi[va]);
+        if (d > r2) r2 = d;
+    }
+    return r2;
+}
+
+static int cell2(Build *B, int i, Err *e)
+{
+    const VoronoiInput *in = B->in;
+    int fa = in->flat_axis, ua = (fa + 1) % 3, va = (fa + 2) % 3;
+    Clip2 *c = &B->c2;
+    c->cur = 0;
+    Poly2 *P = &c->p[0];
+    poly2_reserve(P, 4);
+    P->n = 0;
+    poly2_push(P, in->lo[ua], in->lo[va], -1 - (2 * va));
+    poly2_push(P, in->hi[ua], in->lo[va], -1 - (2 * ua + 1));
+    poly2_push(P, in->hi[ua], in->hi[va], -1 - (2 * va + 1));
+    poly2_push(P, in->lo[ua], in->hi[va], -1 - (2 * ua));
+    const double *xi = in->x + 3 * i;
+    double r2 = 0;
+    for (int k = 0; k < 4; k++) {
+        double d = sq(P->x[2 * k] - xi[ua]) + sq(P->x[2 * k + 1] - xi[va]);
+        if (d > r2) r2 = d;
+    }
+    if (cell_search(B, i, r2, clip2_seed, e)) return -1;
+    P = &c->p[c->cur];
+    if (P->n < 3) return err_set(e, NULL, 0, "voronoi: the cell of seed %d is empty", i);
+    /* base point p of the plane is point 2p at lo, 2p+1 at hi */
+    need(&B->gid, &B->gcap, (size_t)P->n, sizeof(int));
+    need(&B->tmp, &B->tcap, 2 * (size_t)P->n + 4, sizeof(int));
+    for (int k = 0; k < P->n; k++) {
+        double x[3];
+        x[fa] = in->lo[fa];
+        x[ua] = P->x[2 * k];
+        x[va] = P->x[2 * k + 1];
+        int lab[2] = {P->lab[k > 0 ? k - 1 : P->n - 1], P->lab[k]};
+        int32_t key[4];
+        int low = vertex_name(i, lab, 2, key);
+        B->gid[k] = weld_vertex(&B->w, &B->names, key, low, x);
+    }
+    int f0 = B->st.nf;
+    int *q = B->tmp;
+    for (int k = 0; k < P->n; k++) {
+        int a = B->gid[k], b = B->gid[k + 1 < P->n ? k + 1 : 0];
+        int quad[4] = {2 * a, 2 * b, 2 * b + 1, 2 * a + 1};
+        store_face(&B->st, P->lab[k], quad, 4, 0);
+    }
+    for (int k = 0; k < P->n; k++) q[k] = 2 * B->gid[k];
+    store_face(&B->st, -1 - 2 * fa, q, P->n, 1);
+    for (int k = 0; k < P->n; k++) q[k] = 2 * B->gid[k] + 1;
+    store_face(&B->st, -1 - (2 * fa + 1), q, P->n, 0);
+    store_sort_cell(&B->st, f0, &B->tmp, &B->tcap);
+    return 0;
+}
+
+/* ---- pass 2: assembly ----------------------------------------------- */
+
+static int uf_find(int *uf, int a)
+{
+    while (uf[a] != a) {
+        uf[a] = uf[uf[a]];
+        a = uf[a];
+    }
+    return a;
+}
+
+/* Area vector of polygon idx[0..n) (points pts), reversed when rev. */
+static void poly_area(const double *pts, const int *idx, int n, int rev, double S[3])
+{
+    const double *p0 = pts + 3 * idx[0];
+    S[0] = S[1] = S[2] = 0;
+    for (int k = 1; k + 1 < n; k++) {
+        const double *a = pts + 3 * idx[k], *b = pts + 3 * idx[k + 1];
+        double u[3] = {a[0] - p0[0], a[1] - p0[1], a[2] - p0[2]};
+        double v[3] = {b[0] - p0[0], b[1] - p0[1], b[2] - p0[2]};
+        S[0] += 0.5 * (u[1] * v[2] - u[2] * v[1]);
+        S[1] += 0.5 * (u[2] * v[0] - u[0] * v[2]);
+        S[2] += 0.5 * (u[0] * v[1] - u[1] * v[0]);
+    }
+    if (rev)
+        for (int a = 0; a < 3; a++) S[a] = -S[a];
+}
+
+/* Face of cell c (seed i) labelled lab, or -1 (binary search). */
+static int store_find(const Store *s, int c, int lab)
+{
+    int lo = s->cell_off[c], hi = s->cell_off[c + 1] - 1;
+    while (lo <= hi) {
+        int m = (lo + hi) / 2;
+        if (s->lab[m] == lab) return m;
+        if (s->lab[m] < lab) lo = m + 1;
+        else hi = m - 1;
+    }
+    return -1;
+}
+
+/* Directed edges of one cell, counted in a small open hash: a closed cell
+   uses each edge once in each direction. */
+typedef struct Edges {
+    uint64_t *key;
+    int *cnt;       /* +1 per use a->b with a < b, +16 per use b->a */
+    int *used;
+    int cap, nused, ucap;
+} Edges;
+
+static void edges_clear(Edges *x, int nedge)
+{
+    for (int k = 0; k < x->nused; k++) x->cnt[x->used[k]] = 0;
+    x->nused = 0;
+    if (4 * nedge > x->cap) {
+        int cap = 64;
+        while (cap < 4 * nedge) cap *= 2;
+        free(x->key);
+        free(x->cnt);
+        x->key = mem_alloc(sizeof(uint64_t) * (size_t)cap);
+        x->cnt = mem_calloc((size_t)cap, sizeof(int));
+        x->cap = cap;
+    }
+    need(&x->used, &x->ucap, (size_t)nedge, sizeof(int));
+}
+
+static void edges_add(Edges *x, int a, int b)
+{
+    int lo = a < b ? a : b, hi = a < b ? b : a;
+    uint64_t k = (uint64_t)(uint32_t)lo << 32 | (uint32_t)hi;
+    uint64_t h = k * 0x9E3779B97F4A7C15u;
+    int m = x->cap - 1, s = (int)(h >> 40) & m;
+    while (x->cnt[s] && x->key[s] != k) s = (s + 1) & m;
+    if (!x->cnt[s]) {
+        x->key[s] = k;
+        x->used[x->nused++] = s;
+    }
+    x->cnt[s] += a < b ? 1 : 16;
+}
+
+static int edges_closed(const Edges *x)
+{
+    for (int k = 0; k < x->nused; k++)
+        if (x->cnt[x->used[k]] != 17) return 0;
+    return 1;
+}
+
+static void edges_free(Edges *x)
+{
+    free(x->key);
+    free(x->cnt);
+    free(x->used);
+}
+
+/* One face of a cell as the assembly sees it: a stored polygon, reversed
+   when the cell across stored it. */
+typedef struct CFace {
+    int f, rev;
+} CFace;
+
+typedef struct Assembly {
+    const VoronoiInput *in;
+    Store *st;
+    const int *cell_of, *seed_of;
+    double *pts;      /* coordinates of the final point numbers */
+    int *beg, *len;   /* per stored face: its points idx[beg..beg+len) */
+    int *fcell;       /* per stored face: the cell that stored it */
+    double tol;       /* weld distance */
+    Edges edges;
+    CFace *cf;
+    int ncf, cfcap;
+    int *tpts, *ends; /* scratch: a polygon being repaired, unmatched ends */
+    double *tt;
+    int tcap, ecap, ttcap;
+    int ndropped;
+} Assembly;
+
+/* Faces of area below amin whose points all lie within dmax of the first
+   collapse to a point.  A thin face longer than that (a needle between two
+   long edges) stays: collapsing it would move far-apart points together,
+   and dropping it alone would open both cells. */
+static void collapse_tiny(Assembly *A, int *uf, double amin, double dmax)
+{
+    Store *s = A->st;
+    for (int c = 0; c < s->ncells; c++) {
+        int i = A->seed_of[c];
+        for (int f = s->cell_off[c]; f < s->cell_off[c + 1]; f++) {
+            int lab = s->lab[f], n = s->off[f + 1] - s->off[f];
+            if (lab >= 0 && A->in->keep[lab] && lab < i) continue;
+            const int *idx = s->idx + s->off[f];
+            double S[3];
+            poly_area(A->pts, idx, n, 0, S);
+            if (sq(S[0]) + sq(S[1]) + sq(S[2]) >= amin * amin) continue;
+            const double *p0 = A->pts + 3 * idx[0];
+            int small = 1;
+            for (int k = 1; k < n && small; k++) {
+                const double *p = A->pts + 3 * idx[k];
+                small = sq(p[0] - p0[0]) + sq(p[1] - p0[1]) + sq(p[2] - p0[2]) <= dmax * dmax;
+            }
+            if (!small) continue;
+            int r = uf_find(uf, idx[0]);
+            for (int k = 1; k < n; k++) {
+                int q = uf_find(uf, idx[k]);
+                if (q != r) uf[q] = r;
+            }
+        }
+    }
+}
+
+/* Renumbers through uf and drops repeated consecutive points. */
+static void weld_faces(Assembly *A, int *uf)
+{
+    Store *s = A->st;
+    for (int f = 0; f < s->nf; f++) {
+        int *idx = s->idx + s->off[f], n = s->off[f + 1] - s->off[f], m = 0;
+        for (int k = 0; k < n; k++) {
+            int p = uf ? uf_find(uf, idx[k]) : idx[k];
+            if (m == 0 || idx[m - 1] != p) idx[m++] = p;
+        }
+        while (m > 1 && idx[m - 1] == idx[0]) m--;
+        A->beg[f] = s->off[f];
+        A->len[f] = m;
+    }
+}
+
+/* Is stored face f (of a cell with seed i) the one the cell uses?  Not
+   when it faces a lower kept seed that stored the pair's face itself. */
+static int face_superseded(const Assembly *A, int f, int i, int *g)
+{
+    int lab = A->st->lab[f];
+    *g = -1;
+    if (lab < 0 || !A->in->keep[lab] || lab > i) return 0;
+    *g = store_find(A->st, A->cell_of[lab], i);
+    return *g >= 0;
+}
+
+/* The faces of cell c (at least 3 points each) into A->cf; counts their
+   edges into A->edges.  Returns 1 when the cell is closed. */
+static int cell_faces(Assembly *A, int c)
+{
+    Store *s = A->st;
+    int i = A->seed_of[c], nedge = 0;
+    A->ncf = 0;
+    need(&A->cf, &A->cfcap, (size_t)(s->cell_off[c + 1] - s->cell_off[c]), sizeof(CFace));
+    for (int f = s->cell_off[c]; f < s->cell_off[c + 1]; f++) {
+        int g;
+        CFace cf = face_superseded(A, f, i, &g) ? (CFace){g, 1} : (CFace){f, 0};
+        if (A->len[cf.f] < 3) continue;
+        A->cf[A->ncf++] = cf;
+        nedge += A->len[cf.f];
+    }
+    edges_clear(&A->edges, nedge);
+    for (int k = 0; k < A->ncf; k++) {
+        const int *idx = s->idx + A->beg[A->cf[k].f];
+        int n = A->len[A->cf[k].f];
+        for (int q = 0; q < n; q++) {
+            int a = idx[q], b = idx[q + 1 < n ? q + 1 : 0];
+            if (A->cf[k].rev) edges_add(&A->edges, b, a);
+            else edges_add(&A->edges, a, b);
+        }
+    }
+    return edges_closed(&A->edges);
+}
+
+static int edge_count(const Edges *x, int a, int b)
+{
+    int lo = a < b ? a : b, hi = a < b ? b : a;
+    uint64_t k = (uint64_t)(uint32_t)lo << 32 | (uint32_t)hi;
+    int m = x->cap - 1, s = (int)((k * 0x9E3779B97F4A7C15u) >> 40) & m;
+    while (x->cnt[s] && x->key[s] != k) s = (s + 1) & m;
+    return x->cnt[s];
+}
+
+/* Repairs T-junctions of cell c (after cell_faces found it open): a thin
+   face that welding reduced to a segment leaves its end points inside an
+   edge of the neighbouring faces of the one cell that resolved it, but
+   not of the other cells around that edge.  Each point that ends an
+   unmatched edge and lies on another unmatched edge (within 4 tol, strictly
+   between its ends) is inserted there, in the stored polygon, so every
+   cell using that polygon sees it; those cells are returned in touched
+   (at most 2 per repaired face).  Returns the number of insertions. */
+static int cell_repair(Assembly *A, int c, int **touched, int *ntouched, int *tcap)
+{
+    Store *s = A->st;
+    int nends = 0, nins = 0;
+    for (int k = 0; k < A->ncf; k++) {
+        const int *idx = s->idx + A->beg[A->cf[k].f];
+        int n = A->len[A->cf[k].f];
+        need(&A->ends, &A->ecap, (size_t)nends + 2 * (size_t)n, sizeof(int));
+        for (int q = 0; q < n; q++) {
+            int a = idx[q], b = idx[q + 1 < n ? q + 1 : 0];
+            if (edge_count(&A->edges, a, b) == 17) continue;
+            A->ends[nends++] = a;
+            A->ends[nends++] = b;
+        }
+    }
+    for (int k = 0; k < A->ncf; k++) {
+        int f = A->cf[k].f, n = A->len[f], m = 0;
+        need(&A->tpts, &A->tcap, (size_t)n + (size_t)nends, sizeof(int));
+        need(&A->tt, &A->ttcap, (size_t)nends + 1, sizeof(double));
+        for (int q = 0; q < n; q++) {
+            const int *idx = s->idx + A->beg[f];
+            int a = idx[q], b = idx[q + 1 < n ? q + 1 : 0];
+            A->tpts[m++] = a;
+            if (edge_count(&A->edges, a, b) == 17) continue;
+            const double *pa = A->pts + 3 * a, *pb = A->pts + 3 * b;
+            double ab[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+            double l2 = sq(ab[0]) + sq(ab[1]) + sq(ab[2]);
+            int m0 = m;
+            for (int u = 0; u < nends; u++) {
+                int p = A->ends[u], dup = p == a || p == b;
+                for (int v = m0; v < m && !dup; v++) dup = A->tpts[v] == p;
+                if (dup || !(l2 > 0)) continue;
+                const double *pp = A->pts + 3 * p;
+                double ap[3] = {pp[0] - pa[0], pp[1] - pa[1], pp[2] - pa[2]};
+                double t = (ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / l2;
+                if (!(t > 0 && t < 1)) continue;
+                double d2 = sq(ap[0] - t * ab[0]) + sq(ap[1] - t * ab[1]) + sq(ap[2] - t * ab[2]);
+                if (d2 > 16 * A->tol * A->tol) continue;
+                /* sorted along the edge */
+                int v = m++;
+                while (v > m0 && A->tt[v - m0 - 1] > t) {
+                    A->tpts[v] = A->tpts[v - 1];
+                    A->tt[v - m0] = A->tt[v - m0 - 1];
+                    v--;
+                }
+                A->tpts[v] = p;
+                A->tt[v - m0] = t;
+            }
+        }
+        if (m == n) continue;
+        nins += m - n;
+        need(&s->idx, &s->icap, (size_t)s->ni + (size_t)m, sizeof(int));
+        memcpy(s->idx + s->ni, A->tpts, sizeof(int) * (size_t)m);
+        A->beg[f] = s->ni;
+        A->len[f] = m;
+        s->ni += m;
+        int lab = s->lab[f], other[2] = {A->fcell[f], lab >= 0 && A->in->keep[lab] ? A->cell_of[lab] : -1};
+        for (int q = 0; q < 2; q++)
+            if (other[q] >= 0 && other[q] != c) {
+                need(touched, tcap, (size_t)*ntouched + 1, sizeof(int));
+                (*touched)[(*ntouched)++] = other[q];
+            }
+    }
+    return nins;
+}
+
+static int cell_not_closed(const Assembly *A, int c, Err *e)
+{
+    const double *x = A->in->x + 3 * A->seed_of[c];
+    return err_set(e, NULL, 0,
+                   "voronoi: the cell of seed %d at (%g %g %g) is not closed after welding its points "
+                   "(seeds closer than %g of the box?)",
+                   A->seed_of[c], x[0], x[1], x[2], VORONOI_MERGE);
+}
+
+/* Checks every cell, repairing T-junctions; cells whose faces a repair
+   changed are checked again (a queue, each cell in it at most once). */
+static int close_cells(Assembly *A, Err *e)
+{
+    int n = A->st->ncells, head = 0, count = n, budget = 4 * n + 64;
+    if (n <= 0) return 0;
+    int *queue = mem_alloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    char *in_queue = mem_alloc((size_t)(n > 0 ? n : 1));
+    for (int c = 0; c < n; c++) queue[c] = c;
+    memset(in_queue, 1, (size_t)n);
+    int *touched = NULL, ntouched = 0, tcap = 0, rc = 0;
+    while (count > 0 && !rc) {
+        int c = queue[head];
+        head = (head + 1) % n;
+        count--;
+        in_queue[c] = 0;
+        if (cell_faces(A, c)) continue;
+        ntouched = 0;
+        if (budget-- <= 0 || !cell_repair(A, c, &touched, &ntouched, &tcap)) {
+            rc = cell_not_closed(A, c, e);
+            break;
+        }
+        if (!cell_faces(A, c)) {
+            rc = cell_not_closed(A, c, e);
+            break;
+        }
+        for (int k = 0; k < ntouched; k++) {
+            int d = touched[k];
+            if (in_queue[d]) continue;
+            in_queue[d] = 1;
+            queue[(head + count++) % n] = d;
+        }
+    }
+    free(queue);
+    free(in_queue);
+    free(touched);
+    return rc;
+}
+
+/* Hands cell c's own faces to the builder and measures the cell. */
+static void emit_cell(Assembly *A, MeshBuild *b, int c, VoronoiStats *vs)
+{
+    const VoronoiInput *in = A->in;
+    Store *s = A->st;
+    const double *xi = in->x + 3 * A->seed_of[c];
+    cell_faces(A, c);
+    double vol = 0;
+    for (int k = 0; k < A->ncf; k++) {
+        int f = A->cf[k].f, n = A->len[f], lab = s->lab[f];
+        const int *idx = s->idx + A->beg[f];
+        if (!A->cf[k].rev) {
+            if (lab >= 0 && in->keep[lab]) meshbuild_face(b, idx, n, c, A->cell_of[lab], -1);
+            else meshbuild_face(b, idx, n, c, -1, lab >= 0 ? in->patch[lab] : in->side_patch[-1 - lab]);
+        }
+        double S[3];
+        poly_area(A->pts, idx, n, A->cf[k].rev, S);
+        const double *p0 = A->pts + 3 * idx[0];
+        vol += (S[0] * (p0[0] - xi[0]) + S[1] * (p0[1] - xi[1]) + S[2] * (p0[2] - xi[2])) / 3;
+    }
+    if (vs) {
+        if (c == 0 || vol < vs->vol_min) vs->vol_min = vol;
+        vs->vol_total += vol;
+    }
+}
+
+/* Largest angle between an internal face's normal and its seed segment. */
+static double ortho_max(const Mesh *m, const VoronoiInput *in, const int *seed_of)
+{
+    double worst = 0;
+    for (int f = 0; f < m->ninternal; f++) {
+        double S[3];
+        poly_area(m->points, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], 0, S);
+        const double *a = in->x + 3 * seed_of[m->owner[f]], *bx = in->x + 3 * seed_of[m->neighbour[f]];
+        double d[3] = {bx[0] - a[0], bx[1] - a[1], bx[2] - a[2]};
+        if (in->flat_axis >= 0) d[in->flat_axis] = 0;
+        double c[3] = {S[1] * d[2] - S[2] * d[1], S[2] * d[0] - S[0] * d[2], S[0] * d[1] - S[1] * d[0]};
+        double ang = atan2(sqrt(sq(c[0]) + sq(c[1]) + sq(c[2])), S[0] * d[0] + S[1] * d[1] + S[2] * d[2]);
+        if (ang > worst) worst = ang;
+    }
+    return worst;
+}
+
+static int assemble(Build *B, const int *cell_of, const int *seed_of, Mesh *out, VoronoiStats *vs, Err *e)
+{
+    const VoronoiInput *in = B->in;
+    Store *s = &B->st;
+    int flat = in->flat_axis;
+    Assembly A = {0};
+    A.in = in;
+    A.st = s;
+    A.cell_of = cell_of;
+    A.seed_of = seed_of;
+    int np = flat >= 0 ? 2 * B->w.npts : B->w.npts;
+    A.pts = mem_alloc(sizeof(double) * 3 * (size_t)(np > 0 ? np : 1));
+    if (flat >= 0) {
+        for (int p = 0; p < B->w.npts; p++) {
+            memcpy(A.pts + 6 * p, B->w.pts + 3 * p, 3 * sizeof(double));
+            memcpy(A.pts + 6 * p + 3, B->w.pts + 3 * p, 3 * sizeof(double));
+            A.pts[6 * p + 3 + flat] = in->hi[flat];
+        }
+    } else {
+        memcpy(A.pts, B->w.pts, sizeof(double) * 3 * (size_t)np);
+    }
+    A.tol = VORONOI_MERGE * B->L;
+    size_t nf1 = (size_t)(s->nf > 0 ? s->nf : 1);
+    A.len = mem_alloc(sizeof(int) * nf1);
+    A.beg = mem_alloc(sizeof(int) * nf1);
+    A.fcell = mem_alloc(sizeof(int) * nf1);
+    for (int c = 0; c < s->ncells; c++)
+        for (int f = s->cell_off[c]; f < s->cell_off[c + 1]; f++) A.fcell[f] = c;
+    int *uf = NULL;
+    if (flat < 0) {
+        uf = mem_alloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
+        for (int p = 0; p < np; p++) uf[p] = p;
+        collapse_tiny(&A, uf, sq(VORONOI_MERGE * B->L), 4 * VORONOI_MERGE * B->L);
+    }
+    weld_faces(&A, uf);
+    free(uf);
+    int rc = close_cells(&A, e);
+
+    MeshBuild b;
+    meshbuild_init(&b);
+    /* the faces each cell hands to the builder: all but those towards a
+       lower kept seed (the lower cell hands those) */
+    size_t nfo = 0, nio = 0;
+    for (int c = 0; c < s->ncells; c++)
+        for (int f = s->cell_off[c]; f < s->cell_off[c + 1]; f++) {
+            int g;
+            if (face_superseded(&A, f, seed_of[c], &g)) continue;
+            if (A.len[f] < 3) {
+                A.ndropped++;
+                continue;
+            }
+            nfo++;
+            nio += (size_t)A.len[f];
+        }
+    if (!rc) meshbuild_reserve(&b, (size_t)np, nfo, nio);
+    for (int p = 0; p < in->npatches; p++)
+        meshbuild_patch(&b, in->patches[p].name, in->patches[p].type, in->patches[p].neighbour,
+                        in->patches[p].groups);
+    for (int p = 0; p < np; p++) meshbuild_point(&b, A.pts + 3 * p);
+    if (vs) memset(vs, 0, sizeof *vs);
+    for (int c = 0; c < s->ncells && !rc; c++) emit_cell(&A, &b, c, vs);
+    if (!rc) rc = meshbuild_finish(&b, out, NULL, NULL, e);
+    if (!rc && vs) {
+        vs->ncells = s->ncells;
+        vs->nfaces_dropped = A.ndropped;
+        vs->ortho_max = ortho_max(out, in, seed_of);
+    }
+    meshbuild_free(&b);
+    free(A.pts);
+    free(A.len);
+    free(A.beg);
+    free(A.fcell);
+    free(A.cf);
+    free(A.tpts);
+    free(A.ends);
+    free(A.tt);
+    edges_free(&A.edges);
+    return rc;
+}
+
+/* ---- input ---------------------------------------------------------- */
+
+static int check_input(const VoronoiInput *in, Err *e)
+{
+    if (in->nseeds <= 0 || !in->x || !in->keep) return err_set(e, NULL, 0, "voronoi: no seeds");
+    if (in->flat_axis < -1 || in->flat_axis > 2)
+        return err_set(e, NULL, 0, "voronoi: flat axis %d is not -1, 0, 1 or 2", in->flat_axis);
+    for (int a = 0; a < 3; a++)
+        if (!(in->lo[a] < in->hi[a]) || !isfinite(in->lo[a]) || !isfinite(in->hi[a]))
+            return err_set(e, NULL, 0, "voronoi: empty box along axis %d: %g to %g", a, in->lo[a], in->hi[a]);
+    if (in->npatches <= 0 || !in->patches) return err_set(e, NULL, 0, "voronoi: no patches");
+    for (int s = 0; s < 6; s++)
+        if (in->side_patch[s] < 0 || in->side_patch[s] >= in->npatches)
+            return err_set(e, NULL, 0, "voronoi: box side %d has patch %d, not in 0..%d", s, in->side_patch[s],
+                           in->npatches - 1);
+    double L = 0;
+    for (int a = 0; a < 3; a++)
+        if (a != in->flat_axis && in->hi[a] - in->lo[a] > L) L = in->hi[a] - in->lo[a];
+    double tol = VORONOI_MERGE * L;
+    int nkeep = 0;
+    for (int i = 0; i < in->nseeds; i++) {
+        const double *x = in->x + 3 * i;
+        for (int a = 0; a < 3; a++)
+            if (!isfinite(x[a])) return err_set(e, NULL, 0, "voronoi: seed %d is not finite", i);
+        if (!in->keep[i]) {
+            if (!in->patch || in->patch[i] < 0 || in->patch[i] >= in->npatches)
+                return err_set(e, NULL, 0, "voronoi: dropped seed %d has patch %d, not in 0..%d", i,
+                               in->patch ? in->patch[i] : -1, in->npatches - 1);
+            continue;
+        }
+        nkeep++;
+        for (int a = 0; a < 3; a++)
+            if (a != in->flat_axis && (x[a] < in->lo[a] - tol || x[a] > in->hi[a] + tol))
+                return err_set(e, NULL, 0, "voronoi: kept seed %d (%g %g %g) is outside the box", i, x[0], x[1],
+                               x[2]);
+    }
+    if (!nkeep) return err_set(e, NULL, 0, "voronoi: no seed is kept");
+    return 0;
+}
+
+int voronoi_mesh(const VoronoiInput *in, Mesh *out, int *seed_of, VoronoiStats *st, Err *e)
+{
+    mesh_init(out);
+    if (check_input(in, e)) return -1;
+    Build B;
+    memset(&B, 0, sizeof B);
+    B.in = in;
+    B.L = 0;
+    for (int a = 0; a < 3; a++)
+        if (a != in->flat_axis && in->hi[a] - in->lo[a] > B.L) B.L = in->hi[a] - in->lo[a];
+    B.eps = EPS_CLIP * B.L;
+    buckets_build(&B.g, in);
+    int *cell_of = mem_alloc(sizeof(int) * (size_t)in->nseeds);
+    int *cells = mem_alloc(sizeof(int) * (size_t)in->nseeds);
+    int nc = 0;
+    for (int i = 0; i < in->nseeds; i++) {
+        cell_of[i] = in->keep[i] ? nc : -1;
+        if (in->keep[i]) cells[nc++] = i;
+    }
+    size_t expect = (size_t)nc * (in->flat_axis >= 0 ? 2 : 7);
+    weld_init(&B.w, &B.g, VORONOI_MERGE * B.L, expect);
+    names_init(&B.names, in->nseeds, 4 * expect);
+    B.st.ncells = nc;
+    B.st.cell_off = mem_alloc(sizeof(int) * (size_t)(nc + 1));
+    /* 2-D prisms of a lattice have 6 faces and 24 points; 3-D cells 6
+       (lattice) to about 16 faces (random), 4 to 6 points each */
+    size_t fpc = in->flat_axis >= 0 ? 6 : 10;
+    need(&B.st.lab, &B.st.lcap, fpc * (size_t)nc, sizeof(int));
+    need(&B.st.off, &B.st.ocap, fpc * (size_t)nc + 1, sizeof(int));
+    need(&B.st.idx, &B.st.icap, 4 * fpc * (size_t)nc, sizeof(int));
+    B.st.cell_off[0] = 0;
+    int rc = 0;
+    for (int c = 0; c < nc && !rc; c++) {
+        rc = in->flat_axis >= 0 ? cell2(&B, cells[c], e) : cell3(&B, cells[c], e);
+        B.st.cell_off[c + 1] = B.st.nf;
+    }
+    if (!rc) rc = assemble(&B, cell_of, cells, out, st, e);
+    if (!rc && seed_of) memcpy(seed_of, cells, sizeof(int) * (size_t)nc);
+    buckets_free(&B.g);
+    free(B.s.cand);
+    clip_free(&B.c3);
+    clip2_free(&B.c2);
+    weld_free(&B.w);
+    names_free(&B.names);
+    store_free(&B.st);
+    free(B.gid);
+    free(B.vlab);
+    free(B.tmp);
+    free(cell_of);
+    free(cells);
+    if (rc) mesh_free(out);
+    return rc;
+}
