@@ -32,6 +32,28 @@ int gridio_control_format(const char *case_dir, MeshWriteOpts *w, Err *e)
     return rc;
 }
 
+int gridio_args(Args *a, const ToolInfo *t, int out_is_in, GridIO *g, Err *e)
+{
+    const char *in = args_get(a, t, "-i"), *out = args_get(a, t, "-o");
+    g->in = in ? mem_strdup(in) : args_case_path(a, "constant/polyMesh");
+    g->out = out ? mem_strdup(out) : out_is_in ? mem_strdup(g->in) : args_case_path(a, "constant/polyMesh");
+    g->to_stdout = !strcmp(g->out, "-");
+    if (g->to_stdout) args_info_to_stderr(a);
+    args_banner(a, t);
+    g->w.binary = g->w.gzip = 0;
+    if (gridio_control_format(a->case_dir, &g->w, e)) return -1;
+    if (args_get(a, t, "-binary")) g->w.binary = 1;
+    if (args_get(a, t, "-gzip")) g->w.gzip = 1;
+    return 0;
+}
+
+void gridio_free(GridIO *g)
+{
+    free(g->in);
+    free(g->out);
+    g->in = g->out = NULL;
+}
+
 int gridio_write(const Mesh *m, const char *dir, const MeshWriteOpts *w, Err *e)
 {
     if (!strcmp(dir, "-")) return mesh_write(m, "-", w, e);

@@ -9,8 +9,24 @@
 
 #include <stdio.h>
 
+#include "args.h"
 #include "err.h"
 #include "mesh.h"
+
+/* A grid tool's input, output and format. */
+typedef struct GridIO {
+    char *in;          /* -i, default <case>/constant/polyMesh ("-": stdin) */
+    char *out;         /* -o ("-": stdout) */
+    int to_stdout;
+    MeshWriteOpts w;
+} GridIO;
+
+/* The options the grid tools share: -i, -o (default: the input when
+   out_is_in, else <case>/constant/polyMesh), -binary and -gzip over
+   writeFormat/writeCompression of system/controlDict.  With "-o -" the
+   banner and progress go to stderr; the banner is printed here. */
+int gridio_args(Args *a, const ToolInfo *t, int out_is_in, GridIO *g, Err *e);
+void gridio_free(GridIO *g);
 
 /* Format from writeFormat / writeCompression of <case>/system/controlDict
    when that file exists; w is left as it is otherwise. */

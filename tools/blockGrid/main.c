@@ -37,16 +37,9 @@ int main(int argc, char **argv)
     Err e;
     args_parse(argc, argv, &tool, &a);
     if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
-    const char *out = args_get(&a, &tool, "-o");
-    int to_stdout = out && !strcmp(out, "-");
-    if (to_stdout) args_info_to_stderr(&a);
-    args_banner(&a, &tool);
-
+    GridIO io;
+    if (gridio_args(&a, &tool, 0, &io, &e)) err_die(&e);
     char *dict_path = a.dict ? mem_strdup(a.dict) : args_case_path(&a, "system/blockGridDict");
-    MeshWriteOpts w = {0, 0};
-    if (gridio_control_format(a.case_dir, &w, &e)) err_die(&e);
-    if (args_get(&a, &tool, "-binary")) w.binary = 1;
-    if (args_get(&a, &tool, "-gzip")) w.gzip = 1;
 
     fprintf(a.info, "Creating block grid from \"%s\"\n\n", dict_path);
     Dict *d = dict_read(dict_path, &e);
@@ -62,17 +55,16 @@ int main(int argc, char **argv)
             dt > 0 ? m.ncells / dt : 0.0);
     gridio_print_info(a.info, &m);
 
-    char *dir = out ? mem_strdup(out) : args_case_path(&a, "constant/polyMesh");
-    fprintf(a.info, "Writing polyMesh to %s (%s%s)\n\n", to_stdout ? "stdout" : dir,
-            w.binary ? "binary" : "ascii", w.gzip ? ", gzip" : "");
-    if (gridio_write(&m, to_stdout ? "-" : dir, &w, &e)) err_die(&e);
+    fprintf(a.info, "Writing polyMesh to %s (%s%s)\n\n", io.to_stdout ? "stdout" : io.out,
+            io.w.binary ? "binary" : "ascii", io.w.gzip ? ", gzip" : "");
+    if (gridio_write(&m, io.out, &io.w, &e)) err_die(&e);
 
     log_exec(&a);
     log_end(&a);
     mesh_free(&m);
     block_free(&spec);
     dict_free(d);
-    free(dir);
+    gridio_free(&io);
     free(dict_path);
     args_free(&a);
     return 0;

@@ -97,18 +97,8 @@ int main(int argc, char **argv)
     Err e;
     args_parse(argc, argv, &tool, &a);
     if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
-    const char *in = args_get(&a, &tool, "-i");
-    const char *out = args_get(&a, &tool, "-o");
-    char *in_dir = in ? mem_strdup(in) : args_case_path(&a, "constant/polyMesh");
-    char *out_dir = out ? mem_strdup(out) : mem_strdup(in_dir);
-    int to_stdout = !strcmp(out_dir, "-");
-    if (to_stdout) args_info_to_stderr(&a);
-    args_banner(&a, &tool);
-
-    MeshWriteOpts w = {0, 0};
-    if (gridio_control_format(a.case_dir, &w, &e)) err_die(&e);
-    if (args_get(&a, &tool, "-binary")) w.binary = 1;
-    if (args_get(&a, &tool, "-gzip")) w.gzip = 1;
+    GridIO io;
+    if (gridio_args(&a, &tool, 1, &io, &e)) err_die(&e);
     CutOpts co;
     read_opts(&a, &co);
 
@@ -121,10 +111,10 @@ int main(int argc, char **argv)
         fprintf(a.info, "  surface %s (%s): flow %s\n", g.surf[s].name, g.surf[s].type,
                 g.surf[s].flow_inside ? "inside" : "outside");
 
-    fprintf(a.info, "Reading grid from %s\n\n", strcmp(in_dir, "-") ? in_dir : "stdin");
+    fprintf(a.info, "Reading grid from %s\n\n", strcmp(io.in, "-") ? io.in : "stdin");
     Mesh grid;
     mesh_init(&grid);
-    if (mesh_read(&grid, in_dir, &e)) err_die(&e);
+    if (mesh_read(&grid, io.in, &e)) err_die(&e);
     int flat = mesh_empty_axis(&grid);
     if (flat >= 0 && grid.cart.n[0] > 0) {
         double mid = 0.5 * (grid.cart.x[flat][0] + grid.cart.x[flat][grid.cart.n[flat]]);
@@ -141,9 +131,9 @@ int main(int argc, char **argv)
     report(a.info, &st, &g, &m);
     gridio_print_info(a.info, &m);
 
-    fprintf(a.info, "Writing polyMesh to %s (%s%s)\n\n", to_stdout ? "stdout" : out_dir,
-            w.binary ? "binary" : "ascii", w.gzip ? ", gzip" : "");
-    if (gridio_write(&m, out_dir, &w, &e)) err_die(&e);
+    fprintf(a.info, "Writing polyMesh to %s (%s%s)\n\n", io.to_stdout ? "stdout" : io.out,
+            io.w.binary ? "binary" : "ascii", io.w.gzip ? ", gzip" : "");
+    if (gridio_write(&m, io.out, &io.w, &e)) err_die(&e);
 
     log_exec(&a);
     log_end(&a);
@@ -151,8 +141,7 @@ int main(int argc, char **argv)
     mesh_free(&grid);
     geometry_free(&g);
     free(geo_path);
-    free(in_dir);
-    free(out_dir);
+    gridio_free(&io);
     args_free(&a);
     return 0;
 }

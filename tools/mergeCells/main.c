@@ -116,32 +116,22 @@ int main(int argc, char **argv)
     Err e;
     args_parse(argc, argv, &tool, &a);
     if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
-    const char *in = args_get(&a, &tool, "-i");
-    const char *out = args_get(&a, &tool, "-o");
-    char *in_dir = in ? mem_strdup(in) : args_case_path(&a, "constant/polyMesh");
-    char *out_dir = out ? mem_strdup(out) : args_case_path(&a, "constant/polyMesh");
-    int to_stdout = !strcmp(out_dir, "-");
-    if (to_stdout) args_info_to_stderr(&a);
-    args_banner(&a, &tool);
-
-    MeshWriteOpts w = {0, 0};
-    if (gridio_control_format(a.case_dir, &w, &e)) err_die(&e);
-    if (args_get(&a, &tool, "-binary")) w.binary = 1;
-    if (args_get(&a, &tool, "-gzip")) w.gzip = 1;
+    GridIO io;
+    if (gridio_args(&a, &tool, 0, &io, &e)) err_die(&e);
     MergeOpts mo;
     if (read_opts(&a, &mo, &e)) err_die(&e);
     fprintf(a.info, "Merging cells with V <= %g V_cart (criterion %s, maxIter %d, maxSkewness %g)\n", mo.threshold,
             criteria[mo.criterion], mo.max_iter, mo.max_skewness);
 
-    fprintf(a.info, "Reading grid from %s\n\n", strcmp(in_dir, "-") ? in_dir : "stdin");
+    fprintf(a.info, "Reading grid from %s\n\n", strcmp(io.in, "-") ? io.in : "stdin");
     Mesh grid, m;
     mesh_init(&grid);
-    if (mesh_read(&grid, in_dir, &e)) err_die(&e);
+    if (mesh_read(&grid, io.in, &e)) err_die(&e);
     MergeStats st;
     double t0 = args_wall(&a);
     if (merge_mesh(&grid, &mo, &m, &st, &e)) {
         Err e2;
-        err_set(&e2, strcmp(in_dir, "-") ? in_dir : "stdin", 0, "%s", e.msg);
+        err_set(&e2, strcmp(io.in, "-") ? io.in : "stdin", 0, "%s", e.msg);
         err_die(&e2);
     }
     double dt = args_wall(&a) - t0;
@@ -154,17 +144,16 @@ int main(int argc, char **argv)
     report(a.info, &st, &m);
     gridio_print_info(a.info, &m);
 
-    fprintf(a.info, "Writing polyMesh to %s (%s%s)\n\n", to_stdout ? "stdout" : out_dir, w.binary ? "binary" : "ascii",
-            w.gzip ? ", gzip" : "");
-    if (gridio_write(&m, out_dir, &w, &e)) err_die(&e);
+    fprintf(a.info, "Writing polyMesh to %s (%s%s)\n\n", io.to_stdout ? "stdout" : io.out, io.w.binary ? "binary" : "ascii",
+            io.w.gzip ? ", gzip" : "");
+    if (gridio_write(&m, io.out, &io.w, &e)) err_die(&e);
 
     log_exec(&a);
     log_end(&a);
     merge_stats_free(&st);
     mesh_free(&m);
     mesh_free(&grid);
-    free(in_dir);
-    free(out_dir);
+    gridio_free(&io);
     args_free(&a);
     return 0;
 }
