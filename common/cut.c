@@ -1450,11 +1450,7 @@ int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o, Mesh *out, C
         return -1;
     }
     out->cell_parent = parent;
-    for (int k = 0; k < 3; k++) {
-        out->cart.n[k] = c.n[k];
-        out->cart.x[k] = mem_alloc(sizeof(double) * (size_t)c.nv[k]);
-        memcpy(out->cart.x[k], c.x[k], sizeof(double) * (size_t)c.nv[k]);
-    }
+    mesh_copy_cart(&grid->cart, &out->cart);
     wall_normals(&c, out);
     stats(&c, out);
     ctx_free(&c);

@@ -897,18 +897,6 @@ static void work_free(Work *w)
     free(w->order);
 }
 
-static void copy_cart(const CartGrid *a, CartGrid *b)
-{
-    for (int k = 0; k < 3; k++) {
-        b->n[k] = a->n[k];
-        b->x[k] = NULL;
-        if (a->x[k]) {
-            b->x[k] = MEM_NEW(double, (size_t)a->n[k] + 1);
-            memcpy(b->x[k], a->x[k], sizeof(double) * ((size_t)a->n[k] + 1));
-        }
-    }
-}
-
 /* ---- empty faces of merged cells ----
    A merged cell of a 2-D grid would keep one empty face per member on
    each side, but 2-D detection (OpenFOAM's and mesh_empty_axis) wants
@@ -1353,7 +1341,7 @@ int merge_mesh(const Mesh *in, const MergeOpts *o, Mesh *out, MergeStats *st, Er
     }
     stats_after(&w, root, stuck, nout, st);
     assemble(&w, newid, nout, out);   /* last: it reuses g's cell faces */
-    copy_cart(&in->cart, &out->cart);
+    mesh_copy_cart(&in->cart, &out->cart);
     out->cell_parent = mem_alloc(sizeof(int) * (size_t)nout);
     for (int C = 0; C < nout; C++) out->cell_parent[C] = in->cell_parent[w.big[root[C]]];
     out->merge_map = newid;

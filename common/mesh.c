@@ -329,3 +329,15 @@ int mesh_check(const Mesh *m, Err *e)
     if (check_faces(m, e) || check_cells(m, e) || check_patches(m, e) || check_closed(m, e)) return -1;
     return 0;
 }
+
+void mesh_copy_cart(const CartGrid *a, CartGrid *b)
+{
+    for (int k = 0; k < 3; k++) {
+        b->n[k] = a->n[k];
+        b->x[k] = NULL;
+        if (a->x[k]) {
+            b->x[k] = MEM_NEW(double, (size_t)a->n[k] + 1);
+            memcpy(b->x[k], a->x[k], sizeof(double) * ((size_t)a->n[k] + 1));
+        }
+    }
+}

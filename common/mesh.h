@@ -126,6 +126,9 @@ int mesh_face_patch(const Mesh *m, int f);
    cart and cell_parent; returns -1 when the cell has no parent. */
 int mesh_cell_spacing(const Mesh *m, int c, double h[3]);
 
+/* Copies the Cartesian parent grid a into b (b's arrays are new). */
+void mesh_copy_cart(const CartGrid *a, CartGrid *b);
+
 /* Bounding box of all points. */
 void mesh_bounds(const Mesh *m, double lo[3], double hi[3]);
 
