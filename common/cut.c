@@ -400,6 +400,22 @@ static int64_t cell_corner(const Ctx *c, int64_t v0, int q)
    cell or face diagonal (a box edge or corner on grid lines: no grid
    line through the vertex crosses the surface) turn solid too: the point
    snap x (diagonal) towards each solid corner of the cell is tested. */
+/* Does corner q of cell (i, j, k) lie on the surface as seen towards a
+   corner of class `to`: is the point snap x the way from q to such a
+   corner of class `to` too (fluid when to is 1)? */
+static int diagonal_touch(const Ctx *c, int i, int j, int k, const int64_t cv[8], int q, int to)
+{
+    const int ijk[3] = {i + (q & 1), j + ((q >> 1) & 1), k + (q >> 2)};
+    for (int r = 0; r < 8; r++) {
+        if (c->cls[cv[r]] != to) continue;
+        const int rk[3] = {i + (r & 1), j + ((r >> 1) & 1), k + (r >> 2)};
+        double x[3];
+        for (int a = 0; a < 3; a++) x[a] = c->x[a][ijk[a]] + c->snap * (c->x[a][rk[a]] - c->x[a][ijk[a]]);
+        if (geometry_fluid(c->g, x) == to) return 1;
+    }
+    return 0;
+}
+
 static size_t snap_diagonal(Ctx *c, int64_t **list, size_t nl, size_t *lcap)
 {
     for (int k = 0; k < c->n[2]; k++)
@@ -414,19 +430,10 @@ static size_t snap_diagonal(Ctx *c, int64_t **list, size_t nl, size_t *lcap)
                 }
                 if (!nf || !ns) continue;
                 for (int q = 0; q < 8; q++) {
-                    if (c->cls[cv[q]] != 1) continue;
-                    const int ijk[3] = {i + (q & 1), j + ((q >> 1) & 1), k + (q >> 2)};
-                    for (int r = 0; r < 8 && c->cls[cv[q]] == 1; r++) {
-                        if (c->cls[cv[r]] != 0) continue;
-                        const int rk[3] = {i + (r & 1), j + ((r >> 1) & 1), k + (r >> 2)};
-                        double x[3];
-                        for (int a = 0; a < 3; a++)
-                            x[a] = c->x[a][ijk[a]] + c->snap * (c->x[a][rk[a]] - c->x[a][ijk[a]]);
-                        if (geometry_fluid(c->g, x)) continue;
-                        c->cls[cv[q]] = 2;
-                        mem_grow((void **)list, lcap, nl + 1, sizeof **list);
-                        (*list)[nl++] = cv[q];
-                    }
+                    if (c->cls[cv[q]] != 1 || !diagonal_touch(c, i, j, k, cv, q, 0)) continue;
+                    c->cls[cv[q]] = 2;
+                    mem_grow((void **)list, lcap, nl + 1, sizeof **list);
+                    (*list)[nl++] = cv[q];
                 }
             }
     return nl;
@@ -1066,18 +1073,9 @@ static void surface_corners(Ctx *c)
                 }
                 ns = 8 - nf - nb;
                 if (!nf || !nb || !ns) continue;
-                for (int q = 0; q < 8; q++) {
-                    if (c->cls[cv[q]] || c->onsurf[cv[q]]) continue;
-                    const int ijk[3] = {i + (q & 1), j + ((q >> 1) & 1), k + (q >> 2)};
-                    for (int r = 0; r < 8 && !c->onsurf[cv[q]]; r++) {
-                        if (c->cls[cv[r]] != 1) continue;
-                        const int rk[3] = {i + (r & 1), j + ((r >> 1) & 1), k + (r >> 2)};
-                        double x[3];
-                        for (int a = 0; a < 3; a++)
-                            x[a] = c->x[a][ijk[a]] + c->snap * (c->x[a][rk[a]] - c->x[a][ijk[a]]);
-                        if (geometry_fluid(c->g, x)) c->onsurf[cv[q]] = 1;
-                    }
-                }
+                for (int q = 0; q < 8; q++)
+                    if (!c->cls[cv[q]] && !c->onsurf[cv[q]] && diagonal_touch(c, i, j, k, cv, q, 1))
+                        c->onsurf[cv[q]] = 1;
             }
 }
 
