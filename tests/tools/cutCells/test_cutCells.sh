@@ -22,7 +22,8 @@
 #   - the VTK file of a cut grid read by VTK's own reader has the cell
 #     count and total volume of the grid (volumes from each cell's faces by
 #     the divergence theorem, so a missing or flipped face shows);
-#   - malformed geometryDict: file:line messages, non-zero exit, no crash.
+#   - malformed geometryDict and cutCellsDict: file:line messages, non-zero
+#     exit, no crash, the grid on disk untouched.
 set -u
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 TOP=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
@@ -237,3 +238,20 @@ bad missing_stl 'b { shape stl; file "constant/triSurface/none.stl"; }' 'none.st
 bad patch_clash 'walls { shape sphere; centre (0.5 0.5 0.5); radius 0.2; }' "walls"
 bad unbalanced 'b { shape sphere; centre (0.5 0.5 0.5); radius 0.2; ' 'geometryDict'
 bad nan_radius 'b { shape sphere; centre (0.5 0.5 0.5); radius nan; }' 'geometryDict'
+
+# ---- bad cutCellsDict --------------------------------------------------------------------
+mkcase opt 4 4 'b { shape sphere; centre (0.5 0.5 0.5); radius 0.2; }'
+"$BIN/blockGrid" -case opt >/dev/null 2>&1
+cp -r opt/constant/polyMesh opt/grid.orig
+{ header cutCellsDict; echo; echo 'snapTolerance 0.5;'; } >opt/system/cutCellsDict
+"$BIN/cutCells" -case opt >opt/out 2>opt/err; rc=$?
+if [ $rc -ne 0 ] && [ $rc -lt 128 ] && grep -q 'cutCellsDict:3: snapTolerance must be in \[0, 0.25)' opt/err &&
+    diff -r -q opt/grid.orig opt/constant/polyMesh >/dev/null; then
+    pass cutCells_error_snapTolerance "$(head -c 120 opt/err); grid untouched"
+else
+    fail cutCells_error_snapTolerance "status $rc, stderr: $(cat opt/err)"
+fi
+{ header cutCellsDict; echo 'snapTolerence 1e-6;'; } >opt/system/cutCellsDict
+"$BIN/cutCells" -case opt >opt/out 2>opt/err; rc=$?
+[ $rc -ne 0 ] && grep -q "did you mean 'snapTolerance'" opt/err && pass cutCells_error_cutCellsDict_typo ||
+    fail cutCells_error_cutCellsDict_typo "status $rc, stderr: $(cat opt/err)"
