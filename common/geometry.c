@@ -869,11 +869,17 @@ static double leaf_distance(const GeoNode *n, const double x[3])
 
 int geometry_nearest_leaf(const Geometry *g, const double x0[3])
 {
+    return geometry_nearest_leaf_of(g, -1, x0);
+}
+
+int geometry_nearest_leaf_of(const Geometry *g, int surface, const double x0[3])
+{
     double x[3];
     flat(g, x0, x);
     int best = 0;
     double bd = INFINITY;
     for (int i = 0; i < g->nleaves; i++) {
+        if (surface >= 0 && g->leaves[i].surface != surface) continue;
         double d = leaf_distance(g->leaves[i].node, x);
         if (d < bd) {
             bd = d;
@@ -881,6 +887,12 @@ int geometry_nearest_leaf(const Geometry *g, const double x0[3])
         }
     }
     return best;
+}
+
+int geometry_leaf_kind(const Geometry *g, int leaf)
+{
+    const GeoNode *n = g->leaves[leaf].node;
+    return n->op == G_PRIM ? GEO_LEAF_SHAPE : n->cad ? GEO_LEAF_CAD : GEO_LEAF_STL;
 }
 
 const char *geometry_leaf_patch(const Geometry *g, int leaf)

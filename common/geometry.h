@@ -126,6 +126,8 @@ void geometry_normal(const Geometry *g, int leaf, const double x[3], double n[3]
    distance for triangulated leaves); used when a cut point carries no
    leaf. */
 int geometry_nearest_leaf(const Geometry *g, const double x[3]);
+/* The same among the leaves of one surface (surface < 0: all leaves). */
+int geometry_nearest_leaf_of(const Geometry *g, int surface, const double x[3]);
 
 /* Exact volume of the flow domain inside the box lo..hi when it is known
    in closed form (one surface, one primitive, entirely inside the box,
@@ -146,6 +148,11 @@ int geometry_sample(const Geometry *g, double h, double **x, double **n, int **l
    sampled inside the box lo..hi only. */
 int geometry_sample_box(const Geometry *g, double h, const double lo[3], const double hi[3], double **x,
                         double **n, int **leaf);
+
+/* What a leaf is: an analytic shape (exact normals), a CAD model (exact
+   normals through gmsh) or an STL surface (the triangles' normals). */
+enum { GEO_LEAF_SHAPE, GEO_LEAF_CAD, GEO_LEAF_STL };
+int geometry_leaf_kind(const Geometry *g, int leaf);
 
 /* Patch name and type of a leaf. */
 const char *geometry_leaf_patch(const Geometry *g, int leaf);

@@ -60,6 +60,7 @@ void mesh_free(Mesh *m)
     free(m->cell_parent);
     free(m->wall_normal);
     free(m->merge_map);
+    free(m->cell_seed);
     free_geometry(m);
     free(m->cell_off);
     free(m->cell_faces);

@@ -26,6 +26,9 @@
 **                   voronoiGrid), which slip walls need.
 **   mergeMap        labelList, one per cell of the grid before merging:
 **                   the merged cell it became (mergeCells).
+**   cellSeed        vectorField, one per cell: the Voronoi seed the cell
+**                   belongs to (voronoiGrid), the point the solvers use as
+**                   the cell's node (ICCM^V, spec §2.4).
 ** Stream form ("-" as path, for pipelines): the same files one after the
 ** other, each preceded by a line "@file <name> <nbytes>\n", ended by a line
 ** "@end\n"; see doc/file-formats.md.
@@ -63,12 +66,13 @@ typedef struct Mesh {
     Patch *patches;
 
     /* extras (may be absent: cart.n[0] == 0, cell_parent, wall_normal,
-       merge_map NULL) */
+       merge_map, cell_seed NULL) */
     CartGrid cart;
     int *cell_parent;  /* ncells */
     double *wall_normal;  /* 3*(nfaces - ninternal), or NULL */
     int *merge_map;    /* nmerge_old entries, or NULL */
     int nmerge_old;
+    double *cell_seed;    /* 3*ncells, or NULL */
 
     /* geometry, filled by mesh_geometry */
     double *face_area;    /* 3*nfaces, area vectors Sf */

@@ -38,7 +38,7 @@
 ** it is text either way, and OpenFOAM reads both.  Patches with groups
 ** NULL get OpenFOAM's default inGroups (1(wall), 1(empty), ...), and the
 ** reader turns that default back into NULL.  Extras that the mesh lacks
-** (cartesianGrid, cellParent, boundaryNormal, mergeMap)
+** (cartesianGrid, cellParent, boundaryNormal, mergeMap, cellSeed)
 ** are removed from the directory, so a stale cellParent from an earlier
 ** mesh can never be read with a new one.
 */
@@ -57,13 +57,13 @@
 #include <string.h>
 #include <unistd.h>
 
-enum { F_POINTS, F_FACES, F_OWNER, F_NEIGHBOUR, F_BOUNDARY, F_CART, F_PARENT, F_BNORMAL, F_MERGEMAP, NFILES };
+enum { F_POINTS, F_FACES, F_OWNER, F_NEIGHBOUR, F_BOUNDARY, F_CART, F_PARENT, F_BNORMAL, F_MERGEMAP, F_SEED, NFILES };
 
 #define IS_EXTRA(w) ((w) >= F_CART)
 
 static const char *const file_names[NFILES] = {"points",   "faces",         "owner",     "neighbour",
                                                "boundary", "cartesianGrid", "cellParent",
-                                               "boundaryNormal", "mergeMap"};
+                                               "boundaryNormal", "mergeMap", "cellSeed"};
 
 /* ---- writing ---- */
 
@@ -147,6 +147,7 @@ static int has_file(const Mesh *m, int which)
     if (which == F_PARENT) return m->cell_parent != NULL;
     if (which == F_BNORMAL) return m->wall_normal != NULL;
     if (which == F_MERGEMAP) return m->merge_map != NULL;
+    if (which == F_SEED) return m->cell_seed != NULL;
     return 1;
 }
 
@@ -165,6 +166,7 @@ static size_t file_size_hint(const Mesh *m, int which, int binary)
     case F_PARENT: sz = (size_t)m->ncells * (binary ? 4 : 10); break;
     case F_BNORMAL: sz = (nf - ni) * (binary ? 24 : 72); break;
     case F_MERGEMAP: sz = (size_t)m->nmerge_old * (binary ? 4 : 10); break;
+    case F_SEED: sz = (size_t)m->ncells * (binary ? 24 : 72); break;
     default: break;
     }
     return sz + 4096;
@@ -219,7 +221,7 @@ static void mesh_file(const Mesh *m, int which, int binary, Buf *b, Holes *h)
 {
     static const char *const cls[NFILES] = {"vectorField", "faceList",   "labelList", "labelList",
                                             "polyBoundaryMesh", "dictionary", "labelList",
-                                            "vectorField", "labelList"};
+                                            "vectorField", "labelList", "vectorField"};
     char note[160];
     snprintf(note, sizeof note, "nPoints:%d  nCells:%d  nFaces:%d  nInternalFaces:%d", m->npoints,
              m->ncells, m->nfaces, m->ninternal);
@@ -265,6 +267,12 @@ static void mesh_file(const Mesh *m, int which, int binary, Buf *b, Holes *h)
             foam_put_scalars(b, m->wall_normal, (size_t)(m->nfaces - m->ninternal), 3, bin, 0);
         break;
     case F_MERGEMAP: put_labels(b, h, m->merge_map, (size_t)m->nmerge_old, bin); break;
+    case F_SEED:
+        if (h)
+            put_hole(b, h, m->cell_seed, (size_t)m->ncells, 3 * sizeof(double));
+        else
+            foam_put_scalars(b, m->cell_seed, (size_t)m->ncells, 3, bin, 0);
+        break;
     }
     /* OpenFOAM leaves two blank lines after a list, one after boundary */
     if (which != F_BOUNDARY && which != F_CART) buf_putc(b, '\n');
@@ -844,6 +852,19 @@ static int read_bnormal(Mesh *m, const Dict *d, const char *name, Err *e)
     return 0;
 }
 
+static int read_seed(Mesh *m, const Dict *d, const char *name, Err *e)
+{
+    DictNode *const *v;
+    size_t nv, n;
+    if (body(d, name, &v, &nv, e)) return -1;
+    if (nv != 1) return err_set(e, name, list_line(v), "expected one list of vectors, found %zu values", nv);
+    if (dict_node_take_scalars(v[0], 3, &m->cell_seed, &n, e)) return -1;
+    if (n != (size_t)m->ncells) return err_set(e, name, list_line(v), "%zu seeds for %d cells", n, m->ncells);
+    for (size_t i = 0; i < 3 * n; i++)
+        if (!isfinite(m->cell_seed[i])) return err_set(e, name, list_line(v), "seed %zu is not finite", i / 3);
+    return 0;
+}
+
 /* The map's cells before merging are not known here; every entry must
    name a cell of this mesh. */
 static int read_mergemap(Mesh *m, const Dict *d, const char *name, Err *e)
@@ -872,6 +893,7 @@ static int build_mesh(Mesh *m, Part *parts, Err *e)
     if (!rc && d[F_PARENT]) rc = read_parent(m, d[F_PARENT], parts[F_PARENT].name, e);
     if (!rc && d[F_BNORMAL]) rc = read_bnormal(m, d[F_BNORMAL], parts[F_BNORMAL].name, e);
     if (!rc && d[F_MERGEMAP]) rc = read_mergemap(m, d[F_MERGEMAP], parts[F_MERGEMAP].name, e);
+    if (!rc && d[F_SEED]) rc = read_seed(m, d[F_SEED], parts[F_SEED].name, e);
     for (int w = 0; w < NFILES; w++)
         if (d[w]) dict_free(d[w]);
     return rc;

@@ -1,0 +1,190 @@
+/*
+** vgrid.c: the boundary-conforming Voronoi grid (vgrid.h): seeds, cells,
+** patches, cell seeds and boundary normals.
+*/
+#include "vgrid.h"
+#include "mem.h"
+#include "voronoi.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const double PI_ = 3.14159265358979323846;
+
+/* The box side (0..5: xMin, xMax, yMin, ...) a boundary face lies on, or
+   -1: the mean of its points within tol of the side's plane. */
+static int face_side(const Mesh *m, int f, const double lo[3], const double hi[3], double tol)
+{
+    double c[3] = {0, 0, 0};
+    int n = m->face_off[f + 1] - m->face_off[f];
+    for (int q = m->face_off[f]; q < m->face_off[f + 1]; q++)
+        for (int a = 0; a < 3; a++) c[a] += m->points[3 * (size_t)m->face_idx[q] + a] / n;
+    for (int a = 0; a < 3; a++) {
+        if (fabs(c[a] - lo[a]) <= tol) return 2 * a;
+        if (fabs(c[a] - hi[a]) <= tol) return 2 * a + 1;
+    }
+    return -1;
+}
+
+/* side_patch[s]: the grid's patch holding box side s; every boundary
+   face of the block grid must be on a side, one patch per side. */
+static int side_patches(const Mesh *grid, const double lo[3], const double hi[3], int side_patch[6], Err *e)
+{
+    double tol = 0;
+    for (int a = 0; a < 3; a++) tol = fmax(tol, 1e-9 * (hi[a] - lo[a]));
+    for (int s = 0; s < 6; s++) side_patch[s] = -1;
+    for (int f = grid->ninternal; f < grid->nfaces; f++) {
+        int p = mesh_face_patch(grid, f), s = face_side(grid, f, lo, hi, tol);
+        if (s < 0)
+            return err_set(e, NULL, 0, "grid boundary face %d (patch %s) is not on a side of the box", f,
+                           grid->patches[p].name);
+        if (side_patch[s] >= 0 && side_patch[s] != p)
+            return err_set(e, NULL, 0, "box side %s lies in two patches, %s and %s: voronoiGrid needs one patch "
+                           "per side", "xMin\0xMax\0yMin\0yMax\0zMin\0zMax" + 5 * s,
+                           grid->patches[side_patch[s]].name, grid->patches[p].name);
+        side_patch[s] = p;
+    }
+    for (int s = 0; s < 6; s++)
+        if (side_patch[s] < 0)
+            return err_set(e, NULL, 0, "box side %s has no boundary face", "xMin\0xMax\0yMin\0yMax\0zMin\0zMax" + 5 * s);
+    return 0;
+}
+
+static int check_names(const Mesh *grid, const Geometry *g, Err *e)
+{
+    for (int p = 0; p < grid->npatches; p++)
+        for (int s = 0; s < g->nsurf; s++)
+            if (!strcmp(grid->patches[p].name, g->surf[s].name))
+                return err_set(e, g->file, g->surf[s].line, "surface '%s' has the name of the grid's patch %d",
+                               g->surf[s].name, p);
+    return 0;
+}
+
+/* Exact normals: surface faces from the geometry at their centres, box
+   sides their axis.  Patch p >= nbox is surface p - nbox. */
+static void boundary_normals(Mesh *m, const Geometry *g, int nbox)
+{
+    int nb = m->nfaces - m->ninternal;
+    m->wall_normal = mem_alloc(sizeof(double) * 3 * (size_t)(nb > 0 ? nb : 1));
+    for (int p = 0; p < m->npatches; p++) {
+        const Patch *P = &m->patches[p];
+        for (int f = P->start; f < P->start + P->size; f++) {
+            double *n = m->wall_normal + 3 * (size_t)(f - m->ninternal);
+            const double *S = m->face_area + 3 * (size_t)f;
+            if (p >= nbox) {
+                const double *c = m->face_centre + 3 * (size_t)f;
+                geometry_normal(g, geometry_nearest_leaf_of(g, p - nbox, c), c, n);
+                continue;
+            }
+            /* a box side: the dominant axis of the face's own normal */
+            int a = fabs(S[0]) >= fabs(S[1]) && fabs(S[0]) >= fabs(S[2]) ? 0 : fabs(S[1]) >= fabs(S[2]) ? 1 : 2;
+            n[0] = n[1] = n[2] = 0;
+            n[a] = S[a] > 0 ? 1 : -1;
+        }
+    }
+}
+
+double vgrid_normal_error(const Mesh *m, int first_surface_patch, int *face)
+{
+    double worst = -1;
+    if (face) *face = -1;
+    if (!m->wall_normal || !m->face_area) return worst;
+    for (int p = first_surface_patch; p < m->npatches; p++)
+        for (int f = m->patches[p].start; f < m->patches[p].start + m->patches[p].size; f++) {
+            const double *S = m->face_area + 3 * (size_t)f, *n = m->wall_normal + 3 * (size_t)(f - m->ninternal);
+            double s = sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
+            if (!(s > 0)) continue;
+            double c = (S[0] * n[0] + S[1] * n[1] + S[2] * n[2]) / s;
+            double ang = acos(fmax(-1.0, fmin(1.0, c)));
+            if (ang > worst) {
+                worst = ang;
+                if (face) *face = f;
+            }
+        }
+    return worst;
+}
+
+static void count_seeds(const Seeds *s, VGridStats *st)
+{
+    st->nseeds = s->n;
+    for (int i = 0; i < s->n; i++) {
+        if (!s->interior[i]) continue;
+        if (s->kind[i] == SEED_BOUNDARY) st->nboundary++;
+        else st->ncartesian++;
+    }
+}
+
+int vgrid_mesh(const Mesh *grid0, const Geometry *g0, const SeedOpts *o, Mesh *out, VGridStats *st, Err *e)
+{
+    mesh_init(out);
+    memset(st, 0, sizeof *st);
+    const CartGrid *cg = &grid0->cart;
+    if (cg->n[0] <= 0 || cg->n[1] <= 0 || cg->n[2] <= 0)
+        return err_set(e, NULL, 0, "the grid has no Cartesian extras (cartesianGrid): start from a blockGrid grid");
+    if ((long)cg->n[0] * cg->n[1] * cg->n[2] != grid0->ncells)
+        return err_set(e, NULL, 0, "the grid has %d cells but its cartesianGrid %d x %d x %d: start from a "
+                       "blockGrid grid", grid0->ncells, cg->n[0], cg->n[1], cg->n[2]);
+    Geometry none;
+    geometry_init(&none);
+    Geometry g = g0 ? *g0 : none;
+    double lo[3], hi[3];
+    for (int a = 0; a < 3; a++) {
+        lo[a] = cg->x[a][0];
+        hi[a] = cg->x[a][cg->n[a]];
+    }
+    int flat = mesh_empty_axis(grid0);
+    if (flat >= 0) {
+        g.flat_axis = flat;
+        g.flat_coord = 0.5 * (lo[flat] + hi[flat]);
+    }
+    int side_patch[6];
+    if (check_names(grid0, &g, e) || side_patches(grid0, lo, hi, side_patch, e)) return -1;
+    int rc;
+
+    Seeds s;
+    if (seeds_make(grid0, &g, o, &s, e)) return -1;
+    count_seeds(&s, st);
+    int nbox = grid0->npatches, np = nbox + g.nsurf;
+    Patch *pat = mem_calloc((size_t)np, sizeof(Patch));
+    for (int p = 0; p < nbox; p++) pat[p] = grid0->patches[p];
+    for (int k = 0; k < g.nsurf; k++) {
+        pat[nbox + k].name = g.surf[k].name;
+        pat[nbox + k].type = g.surf[k].type;
+    }
+    int *patch = mem_alloc(sizeof(int) * (size_t)(s.n > 0 ? s.n : 1));
+    for (int i = 0; i < s.n; i++) patch[i] = s.interior[i] ? 0 : nbox + (s.surface[i] >= 0 ? s.surface[i] : 0);
+    VoronoiInput in = {s.n, s.x, s.interior, patch, {lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}, flat, np, pat,
+                       {0}};
+    memcpy(in.side_patch, side_patch, sizeof side_patch);
+    int *seed_of = mem_alloc(sizeof(int) * (size_t)(s.n > 0 ? s.n : 1));
+    VoronoiStats vs;
+    rc = voronoi_mesh(&in, out, seed_of, &vs, e);
+    if (!rc) {
+        out->cell_seed = mem_alloc(sizeof(double) * 3 * (size_t)out->ncells);
+        for (int c = 0; c < out->ncells; c++) memcpy(out->cell_seed + 3 * c, s.x + 3 * seed_of[c], 3 * sizeof(double));
+        mesh_geometry(out);
+        boundary_normals(out, &g, nbox);
+        double h = INFINITY;
+        for (int a = 0; a < 3; a++)
+            if (a != flat) h = fmin(h, (hi[a] - lo[a]) / cg->n[a]);
+        st->h = h;
+        st->a = o->min_spacing * h;
+        st->vol_bound = flat >= 0 ? PI_ * st->a * st->a / 4 * (hi[flat] - lo[flat]) : PI_ * pow(st->a, 3) / 6;
+        st->ncells = out->ncells;
+        st->vol_min = INFINITY;
+        for (int c = 0; c < out->ncells; c++) {
+            st->vol_total += out->cell_vol[c];
+            st->vol_min = fmin(st->vol_min, out->cell_vol[c]);
+        }
+        for (int p = nbox; p < out->npatches; p++) st->nsurface_faces += out->patches[p].size;
+        st->ortho_max = vs.ortho_max;
+        st->nfaces_dropped = vs.nfaces_dropped;
+        for (int l = 0; l < g.nleaves; l++) st->nstl += geometry_leaf_kind(&g, l) == GEO_LEAF_STL;
+    }
+    free(seed_of);
+    free(patch);
+    free(pat);
+    seeds_free(&s);
+    return rc;
+}

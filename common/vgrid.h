@@ -1,0 +1,55 @@
+/*
+** vgrid.h: the boundary-conforming Voronoi grid of a block grid and an
+** immersed geometry (ICCM^V, spec granular-model.md §2.4, thesis §3.2.4):
+** what voronoiGrid does, as one library call.
+**
+**   seeds (seeds.h) -> bounded Voronoi cells (voronoi.h) -> polyMesh with
+**   the block grid's side patches, one patch per surface of the geometry,
+**   each cell's seed (Mesh.cell_seed) and exact boundary normals
+**   (Mesh.wall_normal).
+**
+** Patches: the block grid's patches first, in its order (each side of the
+** box must lie in one patch, as blockGrid makes them), then one per
+** surface of the geometry, named and typed as in geometryDict.  A 2-D
+** block grid (one cell thick, empty front and back) gives a 2-D Voronoi
+** grid: prisms one cell thick, the geometry cut by the mid-plane.
+**
+** Boundary normals: on a surface patch, the exact outward normal of the
+** geometry (into the solid) at the face centre, from the nearest leaf of
+** that surface; on a box side, the side's normal.  The normal of a
+** Voronoi boundary face itself is the direction between its two seeds,
+** which the seeds make the sample point's normal: the two agree to the
+** curvature error, which vgrid_normal_error measures.
+*/
+#ifndef KIESEL_VGRID_H
+#define KIESEL_VGRID_H
+
+#include "err.h"
+#include "geometry.h"
+#include "mesh.h"
+#include "seeds.h"
+
+typedef struct VGridStats {
+    int nseeds;             /* all seeds, kept or exterior */
+    int nboundary;          /* boundary seeds (pairs and layers), kept */
+    int ncartesian;         /* Cartesian centres kept as interior seeds */
+    int ncells;
+    int nsurface_faces;     /* faces on the surfaces' patches */
+    double vol_total, vol_min;
+    double vol_bound;       /* pi a^3/6 (2-D: pi a^2/4 x thickness) */
+    double h, a;            /* grid spacing, minimum seed spacing */
+    double ortho_max;       /* radians, faces vs their seed segments */
+    int nfaces_dropped;
+    int nstl;               /* STL leaves (triangulated normals) */
+} VGridStats;
+
+/* Builds the Voronoi grid of `grid` (a block grid with its cartesianGrid
+   extra) and g (NULL or no surfaces: the cell centres only) into out. */
+int vgrid_mesh(const Mesh *grid, const Geometry *g, const SeedOpts *o, Mesh *out, VGridStats *st, Err *e);
+
+/* Largest angle (radians) between a surface-patch face's area vector and
+   its boundary normal (Mesh.wall_normal); -1 when there is none.  *face
+   gets that face. */
+double vgrid_normal_error(const Mesh *m, int first_surface_patch, int *face);
+
+#endif
