@@ -1301,9 +1301,11 @@ static void gs_line(const Geometry *g, int leaf, double h, double hl, double lc,
         t0 = fmax(t0, fmin(ta, tb)), t1 = fmin(t1, fmax(ta, tb));
     }
     if (!(t0 <= t1)) return;
+    /* midpoints: the line leaves through the box sides, and samples half
+       a spacing from them keep the seed pairs inside (shape.c samp_mid) */
     int m = gs_steps(t1 - t0, hl);
-    for (int i = 0; i <= m; i++) {
-        double t = t0 + (t1 - t0) * i / m, l[3], nl[3], x[3], n[3];
+    for (int i = 0; i < m; i++) {
+        double t = t0 + (t1 - t0) * (i + 0.5) / m, l[3], nl[3], x[3], n[3];
         l[a] = lc, l[iu] = o[0] + t * d[0], l[iv] = o[1] + t * d[1];
         nl[a] = 0, nl[iu] = qu / ql, nl[iv] = qv / ql;
         gs_map(g, &g->leaves[leaf], l, nl, x, n);

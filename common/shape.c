@@ -1192,6 +1192,21 @@ static void samp_sphere(Samp *S, const Shape *s, double h)
 
 /* Cylinder and cone: rings along the slant line from the rim at p
    (radius r1) to the rim at q (radius r2), then the end discs. */
+/* Coordinate of node i of n intervals on [a, b], the ends exact. */
+static double samp_node(double a, double b, int i, int n)
+{
+    return i == n ? b : a + (b - a) * i / n;
+}
+
+/* Midpoint of interval i of n on [a, b]: where a surface leaves through
+   the box, samples half a spacing from the box sides put the seeds of
+   the boundary pairs inside the box, and the box side, a symmetry plane
+   of the Voronoi diagram there, closes the pairs' cells exactly. */
+static double samp_mid(double a, double b, int i, int n)
+{
+    return a + (b - a) * (i + 0.5) / n;
+}
+
 static void samp_axi(Samp *S, const Shape *s, double h)
 {
     double u[3], H, r1 = s->r1, r2 = s->kind == SHAPE_CONE ? s->r2 : s->r1;
@@ -1237,8 +1252,8 @@ static void samp_infinite_cylinder(Samp *S, const Shape *s, double h, const doub
     frame_of(u, &F);
     samp_box_range(s->p, u, lo, hi, &a, &b);
     int ns = samp_steps(b - a, h), m = samp_ring_count(s->r1, h);
-    for (int i = 0; i <= ns; i++) {
-        double t = a + (b - a) * i / ns, c[3];
+    for (int i = 0; i < ns; i++) {
+        double t = samp_mid(a, b, i, ns), c[3];
         for (int j = 0; j < 3; j++) c[j] = s->p[j] + t * u[j];
         samp_ring(S, &F, c, s->r1, m, 0.5 * (i % 2), 1, 0);
     }
@@ -1258,11 +1273,6 @@ static void samp_torus(Samp *S, const Shape *s, double h)
     }
 }
 
-/* Coordinate of node i of n intervals on [a, b], the ends exact. */
-static double samp_node(double a, double b, int i, int n)
-{
-    return i == n ? b : a + (b - a) * i / n;
-}
 
 static void samp_box(Samp *S, const Shape *s, double h)
 {
@@ -1283,6 +1293,20 @@ static void samp_box(Samp *S, const Shape *s, double h)
         }
 }
 
+/* Node j of nz along a polygon's axis: ends with a cap exact (edge
+   points), ends on the box midpoint-shifted (samp_mid); NAN for the extra
+   node that shift leaves over. */
+static double polygon_z(double za, double zb, int j, int nz, int cap_lo, int cap_hi)
+{
+    if (cap_lo && cap_hi) return samp_node(za, zb, j, nz);
+    if (!cap_lo && !cap_hi) return j < nz ? samp_mid(za, zb, j, nz) : NAN;
+    /* one cap: nodes from the capped end at spacing (zb - za) / nz, the
+       last half a spacing from the box */
+    double dz = (zb - za) / (nz - 0.5);
+    if (j == nz) return NAN;
+    return cap_lo ? za + j * dz : zb - j * dz;
+}
+
 /* The polygon's sides between z = za and zb (caps where cap_lo / cap_hi),
    then the caps. */
 static void samp_polygon(Samp *S, const Shape *s, double h, double za, double zb, int cap_lo, int cap_hi)
@@ -1300,7 +1324,8 @@ static void samp_polygon(Samp *S, const Shape *s, double h, double za, double zb
                 double x[3], nv[3];
                 x[iu] = P[0] + (Q[0] - P[0]) * i / m;
                 x[iv] = P[1] + (Q[1] - P[1]) * i / m;
-                x[a] = samp_node(za, zb, j, nz);
+                x[a] = polygon_z(za, zb, j, nz, cap_lo, cap_hi);
+                if (!isfinite(x[a])) continue;
                 for (int k = 0; k < 3; k++) nv[k] = ne[k] + (i == 0 ? nprev[k] : 0);
                 if (j == 0 && cap_lo) nv[a] -= 1;
                 if (j == nz && cap_hi) nv[a] += 1;
@@ -1335,9 +1360,9 @@ static void samp_halfspace(Samp *S, const Shape *s, double h, const double lo[3]
     samp_box_range(s->p, F.e1, lo, hi, &a0, &a1);
     samp_box_range(s->p, F.e2, lo, hi, &b0, &b1);
     int na = samp_steps(a1 - a0, h), nb = samp_steps(b1 - b0, h);
-    for (int i = 0; i <= na; i++)
-        for (int j = 0; j <= nb; j++) {
-            double a = samp_node(a0, a1, i, na), b = samp_node(b0, b1, j, nb), x[3];
+    for (int i = 0; i < na; i++)
+        for (int j = 0; j < nb; j++) {
+            double a = samp_mid(a0, a1, i, na), b = samp_mid(b0, b1, j, nb), x[3];
             for (int k = 0; k < 3; k++) x[k] = s->p[k] + a * F.e1[k] + b * F.e2[k];
             samp_add(S, x, s->q);
         }

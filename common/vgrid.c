@@ -85,24 +85,32 @@ static void boundary_normals(Mesh *m, const Geometry *g, int nbox)
     }
 }
 
-double vgrid_normal_error(const Mesh *m, int first_surface_patch, int *face)
+void vgrid_normals(const Mesh *m, int first_surface_patch, double tol, VGridNormals *r)
 {
-    double worst = -1;
-    if (face) *face = -1;
-    if (!m->wall_normal || !m->face_area) return worst;
+    memset(r, 0, sizeof *r);
+    r->max = -1;
+    r->face = -1;
+    if (!m->wall_normal || !m->face_area) return;
+    double total = 0;
     for (int p = first_surface_patch; p < m->npatches; p++)
         for (int f = m->patches[p].start; f < m->patches[p].start + m->patches[p].size; f++) {
             const double *S = m->face_area + 3 * (size_t)f, *n = m->wall_normal + 3 * (size_t)(f - m->ninternal);
-            double s = sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
-            if (!(s > 0)) continue;
-            double c = (S[0] * n[0] + S[1] * n[1] + S[2] * n[2]) / s;
-            double ang = acos(fmax(-1.0, fmin(1.0, c)));
-            if (ang > worst) {
-                worst = ang;
-                if (face) *face = f;
+            double area = sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
+            /* atan2 of |S x n| and S.n: acos loses half the digits near 0 */
+            double x[3] = {S[1] * n[2] - S[2] * n[1], S[2] * n[0] - S[0] * n[2], S[0] * n[1] - S[1] * n[0]};
+            double ang = atan2(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]), S[0] * n[0] + S[1] * n[1] + S[2] * n[2]);
+            r->nfaces++;
+            total += area;
+            if (ang > tol) {
+                r->noff++;
+                r->area_off += area;
+            }
+            if (ang > r->max) {
+                r->max = ang;
+                r->face = f;
             }
         }
-    return worst;
+    if (total > 0) r->area_off /= total;
 }
 
 static void count_seeds(const Seeds *s, VGridStats *st)

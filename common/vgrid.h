@@ -19,7 +19,8 @@
 ** that surface; on a box side, the side's normal.  The normal of a
 ** Voronoi boundary face itself is the direction between its two seeds,
 ** which the seeds make the sample point's normal: the two agree to the
-** curvature error, which vgrid_normal_error measures.
+** curvature error, which vgrid_normals measures, except on the small
+** faces between seeds of neighbouring pairs.
 */
 #ifndef KIESEL_VGRID_H
 #define KIESEL_VGRID_H
@@ -47,9 +48,19 @@ typedef struct VGridStats {
    extra) and g (NULL or no surfaces: the cell centres only) into out. */
 int vgrid_mesh(const Mesh *grid, const Geometry *g, const SeedOpts *o, Mesh *out, VGridStats *st, Err *e);
 
-/* Largest angle (radians) between a surface-patch face's area vector and
-   its boundary normal (Mesh.wall_normal); -1 when there is none.  *face
-   gets that face. */
-double vgrid_normal_error(const Mesh *m, int first_surface_patch, int *face);
+/* Boundary normals against the faces: the angle between each surface
+   face's area vector and its exact normal (Mesh.wall_normal). */
+typedef struct VGridNormals {
+    int nfaces;             /* surface faces */
+    double max;             /* largest angle (radians), -1 without faces */
+    int face;               /* where */
+    int noff;               /* faces beyond the tolerance: the small
+                               faces between seeds of neighbouring pairs
+                               (spec §2.4) */
+    double area_off;        /* their share of the surface area */
+} VGridNormals;
+
+/* Patches from first_surface_patch on are the surfaces; tol in radians. */
+void vgrid_normals(const Mesh *m, int first_surface_patch, double tol, VGridNormals *r);
 
 #endif

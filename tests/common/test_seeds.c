@@ -143,17 +143,21 @@ TEST(seeds_plane_layers)
     }
     EXPECT(bad == 0, "%d boundary seeds off the depths -h/2, h/2, 3h/2, 5h/2", bad);
     EXPECT(order, "layer seeds out of layer order");
-    /* 11 x 11 sample points; interior seeds on the box's sides x, y = 0, 1
-       are dropped (closer than a/2 to a side) */
-    EXPECT(next == 121, "%d exterior seeds, expected 121", next);
-    EXPECT(nlayer[0] == 81 && nlayer[1] == 81 && nlayer[2] == 81, "layers %d %d %d, expected 81 each", nlayer[0],
-           nlayer[1], nlayer[2]);
-    /* fluid centres deeper than 5h/2 + a/2 = 0.275: z = 0.05, 0.15; solid
-       centres beyond h/2 + a/2 = 0.075 above: z = 0.55 .. 0.95 */
-    EXPECT(ncart_in == 200 && ncart_out == 500, "Cartesian seeds %d in the flow (expected 200), %d outside (500)",
+    /* 10 x 10 sample points at the cell centres' x, y (midpoints, half a
+       spacing from the box sides), every pair kept */
+    EXPECT(next == 100, "%d exterior seeds, expected 100", next);
+    EXPECT(nlayer[0] == 100 && nlayer[1] == 100 && nlayer[2] == 100, "layers %d %d %d, expected 100 each",
+           nlayer[0], nlayer[1], nlayer[2]);
+    /* fluid centres deeper than 5h/2 + a/2 = 0.275: z = 0.05, 0.15, but
+       z = 0.15 is 0.03 < a below the deepest layer seed (z = 0.18) and
+       dropped; solid centres beyond h/2 + a/2 = 0.075 above: z = 0.55 ..
+       0.95 */
+    EXPECT(ncart_in == 100 && ncart_out == 500, "Cartesian seeds %d in the flow (expected 100), %d outside (500)",
            ncart_in, ncart_out);
     EXPECT(count_misplaced(&s, &g) == 0, "misplaced seeds");
-    NEAR(min_pair(&s), sqrt(0.05 * 0.05 * 2 + 0.03 * 0.03), 1e-12);
+    /* nearest pair: an exterior seed (z = 0.48) and the solid centre
+       above it (z = 0.55) */
+    NEAR(min_pair(&s), 0.07, 1e-12);
     seeds_free(&s);
     mesh_free(&m);
     geometry_free(&g);

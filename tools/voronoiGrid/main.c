@@ -119,6 +119,11 @@ static int read_geometry(const Args *a, Geometry *g, int *have, Err *e)
     return rc;
 }
 
+static const double PI_ = 3.14159265358979323846;
+/* a surface face further than this from the exact normal (radians) is
+   one of the small faces between seeds of neighbouring pairs */
+#define NORMAL_TOL 0.05
+
 static void report(FILE *f, const VGridStats *s, const Geometry *g, const Mesh *m, const Mesh *grid)
 {
     const CartGrid *cg = &grid->cart;
@@ -141,13 +146,16 @@ static void report(FILE *f, const VGridStats *s, const Geometry *g, const Mesh *
             fprintf(f, "  exact fluid volume:      %.15g (relative error %.3e)\n", ex, (s->vol_total - ex) / ex);
         else
             fprintf(f, "  exact fluid volume:      not known in closed form for this geometry\n");
-        int face;
-        double dn = vgrid_normal_error(m, grid->npatches, &face);
-        if (dn >= 0) fprintf(f, "  largest angle between a surface face and the exact normal: %.3g deg (face %d)\n",
-                             dn * 180 / 3.14159265358979323846, face);
+        VGridNormals vn;
+        vgrid_normals(m, grid->npatches, NORMAL_TOL, &vn);
+        if (vn.nfaces)
+            fprintf(f, "  surface faces within %g deg of the exact normal: %d of %d (%.4f%% of the area); largest "
+                       "angle %.3g deg (face %d)\n",
+                    NORMAL_TOL * 180 / PI_, vn.nfaces - vn.noff, vn.nfaces, 100 * (1 - vn.area_off), vn.max * 180 / PI_,
+                    vn.face);
     }
     fprintf(f, "  largest angle between a face and its seed segment: %.3g deg\n",
-            s->ortho_max * 180 / 3.14159265358979323846);
+            s->ortho_max * 180 / PI_);
     if (s->nfaces_dropped) fprintf(f, "  faces below the weld distance dropped: %d\n", s->nfaces_dropped);
     fprintf(f, "\n");
 }
