@@ -65,7 +65,7 @@ $(BIN)/%: $$(call tool_objs,$$*) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(LDFLAGS) $(filter %.o,$^) $(LIB) $(LDLIBS) -o $@
 
-$(B)/tests/%: tests/common/%.c tests/test.h tests/fixture.h $(LIB)
+$(B)/tests/%: tests/common/%.c tests/test.h tests/fixture.h tests/randgeo.h $(LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Itests $< $(LIB) $(LDLIBS) -o $@
 

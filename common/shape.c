@@ -1224,8 +1224,13 @@ static void samp_axi(Samp *S, const Shape *s, double h)
             samp_ring(S, &F, c, 0, 1, 0, 0, k > 0 ? -1 : 1);
             continue;
         }
-        int mi = s->kind == SHAPE_CYLINDER ? m : samp_ring_count(rho, h);
-        samp_ring(S, &F, c, rho, mi, 0.5 * (i % 2), 1 / L, nu);
+        /* a cylinder's rings are aligned, not staggered: the seed pairs
+           of neighbouring rings then meet only on the surface (a
+           staggered pattern gives Voronoi grids many small faces between
+           a seed and the next ring's partner seed, 1.3 % of the area of a
+           cylinder at h = r/7, against 0.1 % aligned) */
+        int cyl = s->kind == SHAPE_CYLINDER, mi = cyl ? m : samp_ring_count(rho, h);
+        samp_ring(S, &F, c, rho, mi, cyl ? 0 : 0.5 * (i % 2), 1 / L, nu);
     }
     if (r1 > 0) samp_disc(S, &F, s->p, r1, h, -1);
     if (r2 > 0) samp_disc(S, &F, s->q, r2, h, 1);
@@ -1255,7 +1260,7 @@ static void samp_infinite_cylinder(Samp *S, const Shape *s, double h, const doub
     for (int i = 0; i < ns; i++) {
         double t = samp_mid(a, b, i, ns), c[3];
         for (int j = 0; j < 3; j++) c[j] = s->p[j] + t * u[j];
-        samp_ring(S, &F, c, s->r1, m, 0.5 * (i % 2), 1, 0);
+        samp_ring(S, &F, c, s->r1, m, 0, 1, 0);   /* aligned: see samp_axi */
     }
 }
 

@@ -23,9 +23,16 @@
 **     reproduced exactly (fluid volume to 1e-12) and the first two layers
 **     have thickness h each;
 **   - bad input: a grid without cartesianGrid, a surface named like a
-**     grid patch.
+**     grid patch;
+**   - robustness: random primitives and CSG trees (tests/randgeo.h) on
+**     8^3..16^3 grids, a quarter 2-D, flow on either side, 0..2 layers,
+**     a = 0.3h..0.7h: every grid is built and passes mesh_check, its
+**     cells are closed, above the volume bound, orthogonal to and
+**     bisecting their seed segments, and contain their seeds
+**     (VGRID_RANDOM_CASES=n for a longer study: make validate).
 */
 #include "test.h"
+#include "randgeo.h"
 
 #include "block.h"
 #include "dict.h"
@@ -498,6 +505,71 @@ TEST(bad_input)
     mesh_free(&grid);
 }
 
+/* ---- random robustness ---------------------------------------------- */
+
+/* One random case; returns 0 when it passes, else writes why. */
+static int random_case(int N, int flat, const char *geo, const SeedOpts *o, int *ncells, char *why, size_t nwhy)
+{
+    Mesh m;
+    VGridStats st;
+    Mesh grid;
+    grid_unit(&grid, N, flat);
+    Geo G;
+    if (geo_make(&G, geo)) {
+        mesh_free(&grid);
+        snprintf(why, nwhy, "bad geometry text");
+        return 1;
+    }
+    Err e;
+    int rc = vgrid_mesh(&grid, &G.g, o, &m, &st, &e);
+    geo_free(&G);
+    mesh_free(&grid);
+    if (rc) {
+        /* a geometry that leaves no fluid in the box is refused, rightly */
+        if (strstr(e.msg, "no cell centre or boundary seed lies in the flow")) return 0;
+        snprintf(why, nwhy, "vgrid_mesh: %s", e.msg);
+        return 1;
+    }
+    double ang, off;
+    int out;
+    voronoi_props(&m, &ang, &off, &out);
+    double cl = closedness(&m);
+    *ncells += m.ncells;
+    if (mesh_check(&m, &e)) snprintf(why, nwhy, "mesh_check: %s", e.msg), rc = 1;
+    else if (cl > 1e-12) snprintf(why, nwhy, "closedness %g", cl), rc = 1;
+    else if (st.vol_min < st.vol_bound) snprintf(why, nwhy, "volume %g below %g", st.vol_min, st.vol_bound), rc = 1;
+    /* the angle of a face a few 1e-8 long is only known to about 1e-8:
+       its points' distance from the bisector is the exact test */
+    else if (ang > 1e-6 || off > 1e-9) snprintf(why, nwhy, "face off its bisector: %g rad, %g", ang, off), rc = 1;
+    else if (out) snprintf(why, nwhy, "%d seeds outside their cells", out), rc = 1;
+    mesh_free(&m);
+    return rc;
+}
+
+TEST(random_geometries)
+{
+    const char *env = getenv("VGRID_RANDOM_CASES");
+    int ncase = env ? atoi(env) : 80, nfail = 0, ncells = 0;
+    for (int c = 0; c < ncase; c++) {
+        char shape[4096], txt[4400], why[2200];
+        rand_shape(shape, sizeof shape, 2);
+        int flat = rnd() < 0.25 ? 2 : -1, N = 8 + (int)(rnd() * 9);
+        if (flat >= 0) N *= 3;
+        SeedOpts o;
+        seeds_opts_default(&o);
+        o.layers = (int)(rnd() * 3);
+        o.min_spacing = rr(0.3, 0.7);
+        snprintf(txt, sizeof txt, "s { type wall; flow %s; %s }", rnd() < 0.5 ? "inside" : "outside", shape);
+        if (random_case(N, flat, txt, &o, &ncells, why, sizeof why)) {
+            if (nfail++ < 5)
+                printf("  case %d (N = %d, %s, layers %d, a = %.3f h): %s\n    %s\n", c, N, flat >= 0 ? "2-D" : "3-D",
+                       o.layers, o.min_spacing, why, txt);
+        }
+    }
+    printf("  %d random cases (a quarter 2-D), %d cells, %d failed\n", ncase, ncells, nfail);
+    EXPECT(nfail == 0, "%d of %d random cases failed", nfail, ncase);
+}
+
 int main(void)
 {
     RUN(no_geometry_is_block_grid);
@@ -509,5 +581,6 @@ int main(void)
     RUN(boundary_normals);
     RUN(flat_wall_layers);
     RUN(bad_input);
+    RUN(random_geometries);
     return test_summary();
 }
