@@ -61,6 +61,37 @@ static int check_names(const Mesh *grid, const Geometry *g, Err *e)
     return 0;
 }
 
+/* Angle cosine between area vector S and unit normal n. */
+static double cos_to(const double S[3], const double n[3])
+{
+    double s = sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
+    return s > 0 ? (S[0] * n[0] + S[1] * n[1] + S[2] * n[2]) / s : 1;
+}
+
+/* The exact normal of surface `surf` for face f: at the face centre,
+   unless that is far (over 30 deg) from the face's own normal.  That
+   happens next to an edge or corner, where the centre of a face on one
+   wall can be nearer to the other wall; the normals at the face's
+   points are then candidates too, and the one closest to the face's
+   own normal wins (the wall the face lies on). */
+static void surface_normal(const Mesh *m, const Geometry *g, int surf, int f, double n[3])
+{
+    const double *S = m->face_area + 3 * (size_t)f, *c = m->face_centre + 3 * (size_t)f;
+    geometry_normal(g, geometry_nearest_leaf_of(g, surf, c), c, n);
+    double best = cos_to(S, n);
+    if (best > cos(PI_ / 6)) return;
+    for (int q = m->face_off[f]; q < m->face_off[f + 1]; q++) {
+        const double *x = m->points + 3 * (size_t)m->face_idx[q];
+        double v[3];
+        geometry_normal(g, geometry_nearest_leaf_of(g, surf, x), x, v);
+        double cv = cos_to(S, v);
+        if (cv > best) {
+            best = cv;
+            memcpy(n, v, sizeof v);
+        }
+    }
+}
+
 /* Exact normals: surface faces from the geometry at their centres, box
    sides their axis.  Patch p >= nbox is surface p - nbox. */
 static void boundary_normals(Mesh *m, const Geometry *g, int nbox)
@@ -73,8 +104,7 @@ static void boundary_normals(Mesh *m, const Geometry *g, int nbox)
             double *n = m->wall_normal + 3 * (size_t)(f - m->ninternal);
             const double *S = m->face_area + 3 * (size_t)f;
             if (p >= nbox) {
-                const double *c = m->face_centre + 3 * (size_t)f;
-                geometry_normal(g, geometry_nearest_leaf_of(g, p - nbox, c), c, n);
+                surface_normal(m, g, p - nbox, f, n);
                 continue;
             }
             /* a box side: the dominant axis of the face's own normal */
@@ -128,6 +158,8 @@ int vgrid_mesh(const Mesh *grid0, const Geometry *g0, const SeedOpts *o, Mesh *o
     mesh_init(out);
     memset(st, 0, sizeof *st);
     const CartGrid *cg = &grid0->cart;
+    if (grid0->cell_seed)
+        return err_set(e, NULL, 0, "the grid is already a Voronoi grid (it has cellSeed): run blockGrid first");
     if (cg->n[0] <= 0 || cg->n[1] <= 0 || cg->n[2] <= 0)
         return err_set(e, NULL, 0, "the grid has no Cartesian extras (cartesianGrid): start from a blockGrid grid");
     if ((long)cg->n[0] * cg->n[1] * cg->n[2] != grid0->ncells)
