@@ -50,9 +50,11 @@
 ** T-junction); such points are inserted into the stored polygons that
 ** lack them, and the cells sharing a changed polygon are checked again.  A
 ** cell still open is an error naming its seed, never a silently broken
-** grid.  Consequence of merging: face points lie on their bisector to
-** round-off (1e-13 of the box) except near merged points, where they may
-** be off by up to the merge distance.
+** grid.  The faces are then written straight into the Mesh, already in
+** OpenFOAM's order (write_direct; meshbuild only when they are not).
+** Consequence of merging: face points lie on their bisector to round-off
+** (1e-13 of the box) except near merged points, where they may be off by
+** up to the merge distance.
 **
 ** Invariants: cell c is the c-th kept seed; a face's label is the seed
 ** across it, so faces towards dropped seeds go to that seed's patch and
@@ -195,8 +197,21 @@ typedef struct Search {
     int n, cap;
 } Search;
 
+/* Squared distance along axis a from x to bucket column ia; border
+   buckets reach to infinity (seeds outside the box are in them). */
+static double bucket_gap2(const Buckets *g, int a, int ia, double x)
+{
+    double lo = g->org[a] + ia * g->h[a], hi = lo + g->h[a];
+    if (ia > 0 && x < lo) return sq(lo - x);
+    if (ia < g->n[a] - 1 && x > hi) return sq(x - hi);
+    return 0;
+}
+
 /* Appends the seeds of the buckets of shell k around b (except self)
-   closer than sqrt(r2max), sorted by distance. */
+   closer than sqrt(r2max), sorted by distance.  Rows and buckets wholly
+   farther than that are skipped unread: on a lattice shell 2 is searched
+   (its nearest side is nearer than the cell's reach) but holds nothing in
+   reach. */
 static void shell_collect(Search *s, const Buckets *g, const VoronoiInput *in, int self, const int b[3],
                           int k, const double x[3], double r2max)
 {
@@ -207,12 +222,17 @@ static void shell_collect(Search *s, const Buckets *g, const VoronoiInput *in, i
         lo[a] = b[a] - k < 0 ? 0 : b[a] - k;
         hi[a] = b[a] + k >= g->n[a] ? g->n[a] - 1 : b[a] + k;
     }
-    for (int iz = lo[2]; iz <= hi[2]; iz++)
+    for (int iz = lo[2]; iz <= hi[2]; iz++) {
+        double gz = flat == 2 ? 0 : bucket_gap2(g, 2, iz, x[2]);
+        if (gz > r2max) continue;
         for (int iy = lo[1]; iy <= hi[1]; iy++) {
+            double gyz = gz + (flat == 1 ? 0 : bucket_gap2(g, 1, iy, x[1]));
+            if (gyz > r2max) continue;
             int edge = abs(iz - b[2]) == k || abs(iy - b[1]) == k;
             int step = edge || k == 0 ? 1 : 2 * k;
             for (int ix = b[0] - k; ix <= b[0] + k; ix += step) {
                 if (ix < 0 || ix >= g->n[0]) continue;
+                if (gyz + (flat == 0 ? 0 : bucket_gap2(g, 0, ix, x[0])) > r2max) continue;
                 int bk = ix + g->n[0] * (iy + g->n[1] * iz);
                 for (int q = g->start[bk]; q < g->start[bk + 1]; q++) {
                     int j = g->seed[q];
@@ -222,7 +242,7 @@ static void shell_collect(Search *s, const Buckets *g, const VoronoiInput *in, i
                     for (int a = 0; a < 3; a++)
                         if (a != flat) d2 += sq(y[a] - x[a]);
                     if (d2 > r2max) continue;
-                    need(&s->cand, &s->cap, (size_t)s->n + 1, sizeof(Cand));
+                    if (s->n >= s->cap) need(&s->cand, &s->cap, (size_t)s->n + 1, sizeof(Cand));
                     int p = s->n++;
                     while (p > 0 && s->cand[p - 1].d2 > d2) {
                         s->cand[p] = s->cand[p - 1];
@@ -232,6 +252,7 @@ static void shell_collect(Search *s, const Buckets *g, const VoronoiInput *in, i
                 }
             }
         }
+    }
 }
 
 /* ---- 3-D clipper ---------------------------------------------------- */
@@ -383,10 +404,11 @@ static int clip3(Clip *c, const double nrm[3], double off, double eps, int lab)
         const double *v = P->v + 3 * k;
         double s = nrm[0] * v[0] + nrm[1] * v[1] + nrm[2] * v[2] - off;
         c->d[k] = s;
-        c->cls[k] = s > eps ? 1 : s < -eps ? -1 : 0;
         nout += s > eps;
     }
+    /* most planes of a lattice's neighbours only touch the cell */
     if (!nout) return 0;
+    for (int k = 0; k < P->nv; k++) c->cls[k] = c->d[k] > eps ? 1 : c->d[k] < -eps ? -1 : 0;
     /* new vertices: at most one per edge, ni/2 edges */
     poly_reserve(Q, P->nv + P->ni / 2 + 1, P->nf + 1, 3 * P->ni + P->nv + 3);
     int nk = 0;
@@ -958,6 +980,18 @@ static int store_find(const Store *s, int c, int lab)
     return -1;
 }
 
+/* The cell that stored face f (binary search; only repairs need it). */
+static int store_cell(const Store *s, int f)
+{
+    int lo = 0, hi = s->ncells - 1;
+    while (lo < hi) {
+        int m = (lo + hi + 1) / 2;
+        if (s->cell_off[m] <= f) lo = m;
+        else hi = m - 1;
+    }
+    return lo;
+}
+
 /* Directed edges of one cell, counted in a small open hash: a closed cell
    uses each edge once in each direction. */
 typedef struct Edges {
@@ -1023,7 +1057,6 @@ typedef struct Assembly {
     const int *cell_of, *seed_of;
     double *pts;      /* coordinates of the final point numbers */
     int *beg, *len;   /* per stored face: its points idx[beg..beg+len) */
-    int *fcell;       /* per stored face: the cell that stored it */
     double tol;       /* weld distance */
     Edges edges;
     CFace *cf;
@@ -1093,9 +1126,9 @@ static int face_superseded(const Assembly *A, int f, int i, int *g)
     return *g >= 0;
 }
 
-/* The faces of cell c (at least 3 points each) into A->cf; counts their
-   edges into A->edges.  Returns 1 when the cell is closed. */
-static int cell_faces(Assembly *A, int c)
+/* The faces of cell c (at least 3 points each) into A->cf; returns the
+   number of their edges. */
+static int cell_face_list(Assembly *A, int c)
 {
     Store *s = A->st;
     int i = A->seed_of[c], nedge = 0;
@@ -1108,7 +1141,15 @@ static int cell_faces(Assembly *A, int c)
         A->cf[A->ncf++] = cf;
         nedge += A->len[cf.f];
     }
-    edges_clear(&A->edges, nedge);
+    return nedge;
+}
+
+/* cell_face_list, and counts the faces' edges into A->edges.  Returns 1
+   when the cell is closed. */
+static int cell_faces(Assembly *A, int c)
+{
+    Store *s = A->st;
+    edges_clear(&A->edges, cell_face_list(A, c));
     for (int k = 0; k < A->ncf; k++) {
         const int *idx = s->idx + A->beg[A->cf[k].f];
         int n = A->len[A->cf[k].f];
@@ -1194,7 +1235,7 @@ static int cell_repair(Assembly *A, int c, int **touched, int *ntouched, int *tc
         A->beg[f] = s->ni;
         A->len[f] = m;
         s->ni += m;
-        int lab = s->lab[f], other[2] = {A->fcell[f], lab >= 0 && A->in->keep[lab] ? A->cell_of[lab] : -1};
+        int lab = s->lab[f], other[2] = {store_cell(s, f), lab >= 0 && A->in->keep[lab] ? A->cell_of[lab] : -1};
         for (int q = 0; q < 2; q++)
             if (other[q] >= 0 && other[q] != c) {
                 need(touched, tcap, (size_t)*ntouched + 1, sizeof(int));
@@ -1252,21 +1293,14 @@ static int close_cells(Assembly *A, Err *e)
     return rc;
 }
 
-/* Hands cell c's own faces to the builder and measures the cell. */
-static void emit_cell(Assembly *A, MeshBuild *b, int c, VoronoiStats *vs)
+/* Cell c's volume (its faces in A->cf, from cell_face_list) into vs. */
+static void measure_cell(const Assembly *A, int c, VoronoiStats *vs)
 {
-    const VoronoiInput *in = A->in;
-    Store *s = A->st;
-    const double *xi = in->x + 3 * A->seed_of[c];
-    cell_faces(A, c);
+    const double *xi = A->in->x + 3 * A->seed_of[c];
     double vol = 0;
     for (int k = 0; k < A->ncf; k++) {
-        int f = A->cf[k].f, n = A->len[f], lab = s->lab[f];
-        const int *idx = s->idx + A->beg[f];
-        if (!A->cf[k].rev) {
-            if (lab >= 0 && in->keep[lab]) meshbuild_face(b, idx, n, c, A->cell_of[lab], -1);
-            else meshbuild_face(b, idx, n, c, -1, lab >= 0 ? in->patch[lab] : in->side_patch[-1 - lab]);
-        }
+        int f = A->cf[k].f, n = A->len[f];
+        const int *idx = A->st->idx + A->beg[f];
         double S[3];
         poly_area(A->pts, idx, n, A->cf[k].rev, S);
         const double *p0 = A->pts + 3 * idx[0];
@@ -1278,10 +1312,208 @@ static void emit_cell(Assembly *A, MeshBuild *b, int c, VoronoiStats *vs)
     }
 }
 
+/* The cell across stored face f, or -1 - patch for a boundary face. */
+static int face_other(const Assembly *A, int f)
+{
+    const VoronoiInput *in = A->in;
+    int lab = A->st->lab[f];
+    if (lab >= 0 && in->keep[lab]) return A->cell_of[lab];
+    return -1 - (lab >= 0 ? in->patch[lab] : in->side_patch[-1 - lab]);
+}
+
+/* Hands cell c's own faces to the builder and measures the cell. */
+static void emit_cell(Assembly *A, MeshBuild *b, int c, VoronoiStats *vs)
+{
+    cell_face_list(A, c);   /* close_cells checked the edges */
+    for (int k = 0; k < A->ncf; k++) {
+        int f = A->cf[k].f, o = face_other(A, f);
+        if (A->cf[k].rev) continue;
+        if (o >= 0) meshbuild_face(b, A->st->idx + A->beg[f], A->len[f], c, o, -1);
+        else meshbuild_face(b, A->st->idx + A->beg[f], A->len[f], c, -1, -1 - o);
+    }
+    measure_cell(A, c, vs);
+}
+
+/* ---- the mesh in OpenFOAM's order, without a builder ---------------- */
+
+/* Each cell's own faces (those it does not take reversed from a lower
+   cell) come sorted by label, and cells are numbered in seed order, so
+   when every own internal face goes to a higher cell the internal faces
+   arrive sorted by (owner, neighbour): the mesh can be written in place,
+   each boundary face into its patch's range.  That skips meshbuild's
+   copies of every face and point (on big 2-D grids, touching that much
+   fresh memory costs more than making the cells).  Otherwise (an own face
+   towards a lower cell that has no face back) meshbuild sorts. */
+typedef struct Plan {
+    int direct;        /* 1: internal faces arrive in order */
+    int empty;         /* a cell without faces, or -1 */
+    int nface, nint;   /* faces, internal faces */
+    size_t nidx, iint; /* their points, those of internal faces */
+    int *pface;        /* per patch: faces */
+    size_t *pidx;      /* per patch: their points */
+} Plan;
+
+/* Counts the faces each cell hands on (dropping those of fewer than 3
+   points) and whether they arrive in order. */
+static void plan_faces(Assembly *A, Plan *pl)
+{
+    const Store *s = A->st;
+    int np = A->in->npatches;
+    memset(pl, 0, sizeof *pl);
+    pl->direct = 1;
+    pl->empty = -1;
+    pl->pface = mem_calloc((size_t)np, sizeof(int));
+    pl->pidx = mem_calloc((size_t)np, sizeof(size_t));
+    for (int c = 0; c < s->ncells; c++) {
+        int seen = 0;
+        for (int f = s->cell_off[c]; f < s->cell_off[c + 1]; f++) {
+            int g;
+            if (face_superseded(A, f, A->seed_of[c], &g)) {
+                seen |= A->len[g] >= 3;
+                continue;
+            }
+            if (A->len[f] < 3) {
+                A->ndropped++;
+                continue;
+            }
+            seen = 1;
+            int o = face_other(A, f);
+            pl->nface++;
+            pl->nidx += (size_t)A->len[f];
+            if (o >= 0) {
+                pl->nint++;
+                pl->iint += (size_t)A->len[f];
+                pl->direct &= o > c;
+            } else {
+                pl->pface[-1 - o]++;
+                pl->pidx[-1 - o] += (size_t)A->len[f];
+            }
+        }
+        if (!seen && pl->empty < 0) pl->empty = c;
+    }
+}
+
+static void plan_free(Plan *pl)
+{
+    free(pl->pface);
+    free(pl->pidx);
+}
+
+/* Where the next face goes: internal faces first, then patch by patch. */
+typedef struct Cursor {
+    int *face;         /* npatches + 1: next face of the internal faces, each patch */
+    size_t *idx;       /* and its first point */
+} Cursor;
+
+/* Allocates out's faces and patches from the plan. */
+static void mesh_alloc(const VoronoiInput *in, const Plan *pl, int ncells, Mesh *out, Cursor *cur)
+{
+    out->ncells = ncells;
+    out->nfaces = pl->nface;
+    out->ninternal = pl->nint;
+    out->face_off = mem_alloc(sizeof(int) * ((size_t)pl->nface + 1));
+    out->face_idx = mem_alloc(sizeof(int) * (pl->nidx > 0 ? pl->nidx : 1));
+    out->owner = mem_alloc(sizeof(int) * (size_t)(pl->nface > 0 ? pl->nface : 1));
+    out->neighbour = mem_alloc(sizeof(int) * (size_t)(pl->nint > 0 ? pl->nint : 1));
+    out->face_off[0] = 0;
+    out->npatches = in->npatches;
+    out->patches = mem_calloc((size_t)in->npatches, sizeof(Patch));
+    cur->face = mem_alloc(sizeof(int) * ((size_t)in->npatches + 1));
+    cur->idx = mem_alloc(sizeof(size_t) * ((size_t)in->npatches + 1));
+    cur->face[0] = 0;
+    cur->idx[0] = 0;
+    int f = pl->nint;
+    size_t i = pl->iint;
+    for (int p = 0; p < in->npatches; p++) {
+        const Patch *P = &in->patches[p];
+        Patch *Q = &out->patches[p];
+        Q->name = mem_strdup(P->name);
+        Q->type = mem_strdup(P->type);
+        Q->neighbour = P->neighbour ? mem_strdup(P->neighbour) : NULL;
+        Q->groups = P->groups ? mem_strdup(P->groups) : NULL;
+        Q->start = f;
+        Q->size = pl->pface[p];
+        cur->face[p + 1] = f;
+        cur->idx[p + 1] = i;
+        f += pl->pface[p];
+        i += pl->pidx[p];
+    }
+}
+
+/* Writes cell c's own faces into their places and measures the cell. */
+static void put_cell(Assembly *A, Mesh *m, Cursor *cur, int c, VoronoiStats *vs)
+{
+    cell_face_list(A, c);   /* close_cells checked the edges */
+    for (int k = 0; k < A->ncf; k++) {
+        if (A->cf[k].rev) continue;
+        int f = A->cf[k].f, o = face_other(A, f), slot = o >= 0 ? 0 : -o, g = cur->face[slot]++;
+        size_t at = cur->idx[slot];
+        memcpy(m->face_idx + at, A->st->idx + A->beg[f], sizeof(int) * (size_t)A->len[f]);
+        cur->idx[slot] = at + (size_t)A->len[f];
+        m->face_off[g + 1] = (int)cur->idx[slot];
+        m->owner[g] = c;
+        if (o >= 0) m->neighbour[g] = o;
+    }
+    measure_cell(A, c, vs);
+}
+
+/* The points: A's own array when every point is used (the usual case),
+   else the used ones renumbered in order, as meshbuild does. */
+static void mesh_points(Assembly *A, int np, Mesh *m, size_t nidx)
+{
+    char *used = mem_calloc((size_t)(np > 0 ? np : 1), 1);
+    for (size_t k = 0; k < nidx; k++) used[m->face_idx[k]] = 1;
+    int nu = 0;
+    for (int p = 0; p < np; p++) nu += used[p];
+    if (nu == np) {
+        m->points = A->pts;
+        A->pts = NULL;
+    } else {
+        int *pmap = mem_alloc(sizeof(int) * (size_t)np);
+        m->points = mem_alloc(sizeof(double) * 3 * (size_t)(nu > 0 ? nu : 1));
+        nu = 0;
+        for (int p = 0; p < np; p++) {
+            pmap[p] = used[p] ? nu : -1;
+            if (used[p]) memcpy(m->points + 3 * (size_t)nu++, A->pts + 3 * (size_t)p, 3 * sizeof(double));
+        }
+        for (size_t k = 0; k < nidx; k++) m->face_idx[k] = pmap[m->face_idx[k]];
+        free(pmap);
+    }
+    m->npoints = nu;
+    free(used);
+}
+
+static int write_direct(Assembly *A, const Plan *pl, int np, Mesh *out, VoronoiStats *vs)
+{
+    Cursor cur;
+    mesh_alloc(A->in, pl, A->st->ncells, out, &cur);
+    for (int c = 0; c < A->st->ncells; c++) put_cell(A, out, &cur, c, vs);
+    mesh_points(A, np, out, pl->nidx);
+    free(cur.face);
+    free(cur.idx);
+    return 0;
+}
+
+static int write_meshbuild(Assembly *A, const Plan *pl, int np, Mesh *out, VoronoiStats *vs, Err *e)
+{
+    const VoronoiInput *in = A->in;
+    MeshBuild b;
+    meshbuild_init(&b);
+    meshbuild_reserve(&b, (size_t)np, (size_t)pl->nface, pl->nidx);
+    for (int p = 0; p < in->npatches; p++)
+        meshbuild_patch(&b, in->patches[p].name, in->patches[p].type, in->patches[p].neighbour,
+                        in->patches[p].groups);
+    for (int p = 0; p < np; p++) meshbuild_point(&b, A->pts + 3 * p);
+    for (int c = 0; c < A->st->ncells; c++) emit_cell(A, &b, c, vs);
+    int rc = meshbuild_finish(&b, out, NULL, NULL, e);
+    meshbuild_free(&b);
+    return rc;
+}
+
 /* Largest angle between an internal face's normal and its seed segment. */
 static double ortho_max(const Mesh *m, const VoronoiInput *in, const int *seed_of)
 {
-    double worst = 0;
+    double worst = 0, tan_worst = 0;
     for (int f = 0; f < m->ninternal; f++) {
         double S[3];
         poly_area(m->points, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], 0, S);
@@ -1289,8 +1521,14 @@ static double ortho_max(const Mesh *m, const VoronoiInput *in, const int *seed_o
         double d[3] = {bx[0] - a[0], bx[1] - a[1], bx[2] - a[2]};
         if (in->flat_axis >= 0) d[in->flat_axis] = 0;
         double c[3] = {S[1] * d[2] - S[2] * d[1], S[2] * d[0] - S[0] * d[2], S[0] * d[1] - S[1] * d[0]};
-        double ang = atan2(sqrt(sq(c[0]) + sq(c[1]) + sq(c[2])), S[0] * d[0] + S[1] * d[1] + S[2] * d[2]);
-        if (ang > worst) worst = ang;
+        double c2 = sq(c[0]) + sq(c[1]) + sq(c[2]), dot = S[0] * d[0] + S[1] * d[1] + S[2] * d[2];
+        /* atan2 only for angles that may beat worst: tan < 0.999 tan(worst) cannot */
+        if (dot > 0 && c2 < sq(0.999 * tan_worst * dot)) continue;
+        double ang = atan2(sqrt(c2), dot);
+        if (ang > worst) {
+            worst = ang;
+            tan_worst = worst < 1.5 ? tan(worst) : 0;
+        }
     }
     return worst;
 }
@@ -1320,9 +1558,6 @@ static int assemble(Build *B, const int *cell_of, const int *seed_of, Mesh *out,
     size_t nf1 = (size_t)(s->nf > 0 ? s->nf : 1);
     A.len = mem_alloc(sizeof(int) * nf1);
     A.beg = mem_alloc(sizeof(int) * nf1);
-    A.fcell = mem_alloc(sizeof(int) * nf1);
-    for (int c = 0; c < s->ncells; c++)
-        for (int f = s->cell_off[c]; f < s->cell_off[c + 1]; f++) A.fcell[f] = c;
     int *uf = NULL;
     if (flat < 0) {
         uf = mem_alloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
@@ -1333,40 +1568,21 @@ static int assemble(Build *B, const int *cell_of, const int *seed_of, Mesh *out,
     free(uf);
     int rc = close_cells(&A, e);
 
-    MeshBuild b;
-    meshbuild_init(&b);
-    /* the faces each cell hands to the builder: all but those towards a
-       lower kept seed (the lower cell hands those) */
-    size_t nfo = 0, nio = 0;
-    for (int c = 0; c < s->ncells; c++)
-        for (int f = s->cell_off[c]; f < s->cell_off[c + 1]; f++) {
-            int g;
-            if (face_superseded(&A, f, seed_of[c], &g)) continue;
-            if (A.len[f] < 3) {
-                A.ndropped++;
-                continue;
-            }
-            nfo++;
-            nio += (size_t)A.len[f];
-        }
-    if (!rc) meshbuild_reserve(&b, (size_t)np, nfo, nio);
-    for (int p = 0; p < in->npatches; p++)
-        meshbuild_patch(&b, in->patches[p].name, in->patches[p].type, in->patches[p].neighbour,
-                        in->patches[p].groups);
-    for (int p = 0; p < np; p++) meshbuild_point(&b, A.pts + 3 * p);
+    Plan pl;
+    plan_faces(&A, &pl);
     if (vs) memset(vs, 0, sizeof *vs);
-    for (int c = 0; c < s->ncells && !rc; c++) emit_cell(&A, &b, c, vs);
-    if (!rc) rc = meshbuild_finish(&b, out, NULL, NULL, e);
+    if (!rc && pl.empty >= 0) rc = err_set(e, NULL, 0, "voronoi: the cell of seed %d has no face", seed_of[pl.empty]);
+    if (!rc)
+        rc = pl.direct ? write_direct(&A, &pl, np, out, vs) : write_meshbuild(&A, &pl, np, out, vs, e);
+    plan_free(&pl);
     if (!rc && vs) {
         vs->ncells = s->ncells;
         vs->nfaces_dropped = A.ndropped;
         vs->ortho_max = ortho_max(out, in, seed_of);
     }
-    meshbuild_free(&b);
     free(A.pts);
     free(A.len);
     free(A.beg);
-    free(A.fcell);
     free(A.cf);
     free(A.tpts);
     free(A.ends);
