@@ -1251,10 +1251,13 @@ static void gs_poly2(const Geometry *g, int leaf, double h, double hl, const dou
         const double *P = uv + 2 * e, *Q = uv + 2 * ((e + 1) % np), *R = uv + 2 * ((e + np - 1) % np);
         double eu = Q[0] - P[0], ev = Q[1] - P[1], L = sqrt(eu * eu + ev * ev);
         double pu = P[0] - R[0], pv = P[1] - R[1], Lp = sqrt(pu * pu + pv * pv);
+        /* the vertex P, then the midpoints of m intervals (shape.c
+           samp_box: the edge rule's mirror seeds then replace the first
+           pair cleanly) */
         int m = gs_steps(L, hl);
-        for (int i = 0; i < m; i++) {
-            double l[3], nl[3], x[3], n[3];
-            l[a] = lc, l[iu] = P[0] + eu * i / m, l[iv] = P[1] + ev * i / m;
+        for (int i = 0; i <= m; i++) {
+            double l[3], nl[3], x[3], n[3], t = i == 0 ? 0 : (i - 0.5) / m;
+            l[a] = lc, l[iu] = P[0] + eu * t, l[iv] = P[1] + ev * t;
             nl[a] = 0, nl[iu] = ev / L, nl[iv] = -eu / L;
             if (i == 0) nl[iu] += pv / Lp, nl[iv] -= pu / Lp;
             gs_map(g, &g->leaves[leaf], l, nl, x, n);

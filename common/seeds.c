@@ -8,8 +8,9 @@
 ** are offset by multiples of hs/2, and a = min_spacing h.
 **
 ** Order and rules, in the order seeds are considered (a seed is dropped
-** when it is closer than a to a seed kept before it: bucket hash of cell
-** size a, so the kept set keeps every pair at least a apart):
+** when it is closer than a to a seed kept before it, or coincides with one
+** when a = 0: a dense bucket grid of cells 2a or wider, so the kept set
+** keeps every pair at least a apart):
 **   1. boundary pairs: for every sample point p with normal n (out of the
 **      flow, geometry_sample_box with the grid's box) the exterior seed
 **      p + (hs/2) n, then the interior seed p - (hs/2) n (eq. 3.2-3.3,
@@ -63,6 +64,7 @@
 #include <string.h>
 
 #include "mem.h"
+#include "voronoi.h"
 
 /* ---- bucket hash: items by cell of a uniform grid, unbounded extent ---- */
 
@@ -74,6 +76,9 @@ typedef struct Hash {
     int *head;         /* slot: last item inserted there */
     int *next;         /* item: the previous item in its cell, -1 */
     const double *x;   /* item coordinates (3 per item) */
+    int64_t cmin[3], cmax[3];  /* range of occupied cells per axis: a
+                                  query skips the empty layers beyond it
+                                  (in 2-D every item is in one layer) */
 } Hash;
 
 static void hash_init(Hash *H, double cell, const double *x, int nmax)
@@ -85,6 +90,7 @@ static void hash_init(Hash *H, double cell, const double *x, int nmax)
     H->head = MEM_NEW(int, H->cap);
     H->next = MEM_NEW(int, nmax);
     H->x = x;
+    for (int k = 0; k < 3; k++) H->cmin[k] = INT64_MAX, H->cmax[k] = INT64_MIN;
 }
 
 static void hash_free(Hash *H)
@@ -135,7 +141,13 @@ static void hash_grow(Hash *H)
 static void hash_insert(Hash *H, int item)
 {
     const double *x = H->x + 3 * (size_t)item;
-    uint64_t key = hash_key(hash_coord(H, x[0]), hash_coord(H, x[1]), hash_coord(H, x[2]));
+    int64_t c[3];
+    for (int k = 0; k < 3; k++) {
+        c[k] = hash_coord(H, x[k]);
+        if (c[k] < H->cmin[k]) H->cmin[k] = c[k];
+        if (c[k] > H->cmax[k]) H->cmax[k] = c[k];
+    }
+    uint64_t key = hash_key(c[0], c[1], c[2]);
     if (2 * (H->used + 1) > H->cap) hash_grow(H);
     size_t s = hash_slot(H, key);
     if (!H->key[s]) {
@@ -147,16 +159,33 @@ static void hash_insert(Hash *H, int item)
     H->head[s] = item;
 }
 
+/* The cells a query at x reaching r (r <= cell) must look at, per axis:
+   those the interval [x - r, x + r] meets, inside the occupied range.
+   Cells are visited in increasing order, so the nearest item among equals
+   is the one found first, as when all 27 neighbours were visited. */
+static void hash_range(const Hash *H, const double x[3], double r, int64_t lo[3], int64_t hi[3])
+{
+    for (int k = 0; k < 3; k++) {
+        lo[k] = hash_coord(H, x[k] - 1.001 * r);   /* margin: round-off of x +- r */
+        hi[k] = hash_coord(H, x[k] + 1.001 * r);
+        int64_t c = hash_coord(H, x[k]);
+        if (lo[k] < c - 1) lo[k] = c - 1;
+        if (hi[k] > c + 1) hi[k] = c + 1;
+        if (lo[k] < H->cmin[k]) lo[k] = H->cmin[k];
+        if (hi[k] > H->cmax[k]) hi[k] = H->cmax[k];
+    }
+}
+
 /* The item nearest to x closer than r (r <= cell), or -1. */
 static int hash_nearest(const Hash *H, const double x[3], double r)
 {
-    int64_t c[3];
-    for (int k = 0; k < 3; k++) c[k] = hash_coord(H, x[k]);
+    int64_t lo[3], hi[3];
+    hash_range(H, x, r, lo, hi);
     int best = -1;
     double bd = r * r;
-    for (int64_t i = c[0] - 1; i <= c[0] + 1; i++)
-        for (int64_t j = c[1] - 1; j <= c[1] + 1; j++)
-            for (int64_t k = c[2] - 1; k <= c[2] + 1; k++) {
+    for (int64_t i = lo[0]; i <= hi[0]; i++)
+        for (int64_t j = lo[1]; j <= hi[1]; j++)
+            for (int64_t k = lo[2]; k <= hi[2]; k++) {
                 size_t s = hash_slot(H, hash_key(i, j, k));
                 if (!H->key[s]) continue;
                 for (int it = H->head[s]; it >= 0; it = H->next[it]) {
@@ -169,13 +198,94 @@ static int hash_nearest(const Hash *H, const double x[3], double r)
     return best;
 }
 
+/* ---- dense grid: the kept seeds ---- */
+
+/* The kept seeds by cell of a dense grid over the box and a margin of one
+   cell: neighbouring cells are neighbours in memory, where the hash above
+   sends every probe to a random slot (most of seeds_make's time on big
+   grids).  Seeds beyond the margin go to the border cells, which only
+   makes them look nearer to the search than they are, so it stays exact.
+   Cells are at least 2a wide, so a query of radius a meets at most 2 per
+   axis; a box too elongated for the seed count gets wider cells. */
+typedef struct Near {
+    double cell;
+    double base[3];    /* coordinate of the first cell's low side */
+    int n[3];
+    int *head;         /* per cell: last item inserted, -1 */
+    int *next;         /* per item: the previous item in its cell, -1 */
+    const double *x;
+} Near;
+
+static void near_init(Near *G, double cell, const double lo[3], const double hi[3], const double *x, int nmax)
+{
+    double total;
+    for (;;) {
+        total = 1;
+        for (int k = 0; k < 3; k++) {
+            G->base[k] = (floor(lo[k] / cell) - 1) * cell;
+            G->n[k] = (int)fmin(ceil((hi[k] - G->base[k]) / cell) + 1, 1 << 20);
+            total *= G->n[k];
+        }
+        if (total <= 4.0 * nmax + 4096) break;
+        cell *= 2;
+    }
+    G->cell = cell;
+    G->head = MEM_NEW(int, (size_t)total);
+    memset(G->head, 0xff, sizeof(int) * (size_t)total);
+    G->next = MEM_NEW(int, nmax > 0 ? nmax : 1);
+    G->x = x;
+}
+
+static void near_free(Near *G)
+{
+    free(G->head);
+    free(G->next);
+}
+
+static int near_axis(const Near *G, int k, double v)
+{
+    double t = floor((v - G->base[k]) / G->cell);
+    return !(t > 0) ? 0 : t >= G->n[k] ? G->n[k] - 1 : (int)t;
+}
+
+static void near_insert(Near *G, int item)
+{
+    const double *x = G->x + 3 * (size_t)item;
+    size_t c = (size_t)near_axis(G, 0, x[0])
+             + (size_t)G->n[0] * ((size_t)near_axis(G, 1, x[1]) + (size_t)G->n[1] * (size_t)near_axis(G, 2, x[2]));
+    G->next[item] = G->head[c];
+    G->head[c] = item;
+}
+
+/* Is an item closer than r (r <= cell) to x? */
+static int near_any(const Near *G, const double x[3], double r)
+{
+    int lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        lo[k] = near_axis(G, k, x[k] - 1.001 * r);   /* margin: round-off of x +- r */
+        hi[k] = near_axis(G, k, x[k] + 1.001 * r);
+    }
+    for (int k = lo[2]; k <= hi[2]; k++)
+        for (int j = lo[1]; j <= hi[1]; j++)
+            for (int i = lo[0]; i <= hi[0]; i++)
+                for (int it = G->head[i + (size_t)G->n[0] * (j + (size_t)G->n[1] * k)]; it >= 0; it = G->next[it]) {
+                    const double *y = G->x + 3 * (size_t)it;
+                    if ((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1])
+                        + (x[2] - y[2]) * (x[2] - y[2]) < r * r)
+                        return 1;
+                }
+    return 0;
+}
+
 /* ---- the seed set under construction ---- */
 
 typedef struct Build {
     Seeds *s;
     int cap;
-    Hash kept;          /* kept seeds, cell a */
+    Near kept;          /* kept seeds */
     double a;
+    double dup;         /* seeds closer than this would be one point to
+                           voronoi_mesh (VORONOI_MERGE x box size) */
     const Geometry *g;
     int flat;
     double lo[3], hi[3];
@@ -191,7 +301,7 @@ static int fits_box(const Build *B, const double x[3], double margin)
 /* Keeps x when no kept seed is closer than a. */
 static int try_add(Build *B, const double x[3], int interior, int surface, int kind, const double n[3])
 {
-    if (B->a > 0 && hash_nearest(&B->kept, x, B->a) >= 0) return 0;
+    if (near_any(&B->kept, x, fmax(B->a, B->dup))) return 0;
     Seeds *s = B->s;
     int i = s->n++;
     memcpy(s->x + 3 * (size_t)i, x, 3 * sizeof *x);
@@ -199,7 +309,7 @@ static int try_add(Build *B, const double x[3], int interior, int surface, int k
     s->surface[i] = surface;
     s->kind[i] = kind;
     for (int k = 0; k < 3; k++) s->normal[3 * (size_t)i + k] = n ? n[k] : 0;
-    if (B->a > 0) hash_insert(&B->kept, i);
+    near_insert(&B->kept, i);
     return 1;
 }
 
@@ -231,9 +341,11 @@ void seeds_free(Seeds *s)
 }
 
 /* Boundary seeds of layer i (-1: exterior) for every sample point. */
-static void boundary_layer(Build *B, int i, const double *px, const double *pn, const int *pl, int np, double hs)
+static void boundary_layer(Build *B, int i, const double *px, const double *pn, const int *pl, int np, double hs,
+                           const char *skip)
 {
     for (int p = 0; p < np; p++) {
+        if (skip && skip[p]) continue;
         const double *x = px + 3 * (size_t)p, *n = pn + 3 * (size_t)p;
         double off = i < 0 ? hs / 2 : -(2 * i + 1) * hs / 2, y[3];
         for (int k = 0; k < 3; k++) y[k] = x[k] + off * n[k];
@@ -288,14 +400,87 @@ static int convex_edge(Build *B, const double x[3], const double n[3], int leaf,
     return 1;
 }
 
-/* The interleaved first pass: each point's exterior, then its interior
-   seed. */
-static void boundary_pairs(Build *B, const double *px, const double *pn, const int *pl, int np, double hs)
+/* Fig. 3.16 at a corner of three mutually orthogonal faces (boxes, turned
+   or not): x is on three faces when its mean normal n makes 1/sqrt 3 with
+   the nearest face's normal n1 and the other two, n2, n3, are unit,
+   orthogonal, and sum with n1 to sqrt 3 n.  The seeds are the eight
+   corners of the cube of side hs centred on x, the flow's corner
+   interior: one seed on the flow's side of all three faces (convex corner
+   of the flow) or on the solid's side (convex corner of the solid) and
+   its mirror images across every set of faces, so the bisectors are the
+   three faces.  Returns 0 (nothing added) elsewhere. */
+static int orthogonal_corner(Build *B, const double x[3], const double n[3], int leaf, double hs)
 {
+    double nf[3][3], v[3], w[3];
+    geometry_normal(B->g, leaf, x, nf[0]);
+    double c = nf[0][0] * n[0] + nf[0][1] * n[1] + nf[0][2] * n[2];
+    if (fabs(c - 1 / sqrt(3.0)) > 1e-9) return 0;
+    for (int k = 0; k < 3; k++) v[k] = sqrt(3.0) * n[k] - nf[0][k];
+    w[0] = nf[0][1] * v[2] - nf[0][2] * v[1];
+    w[1] = nf[0][2] * v[0] - nf[0][0] * v[2];
+    w[2] = nf[0][0] * v[1] - nf[0][1] * v[0];
+    /* |n1 x v| = sqrt 2 for orthogonal faces, so w = n2 - n3 */
+    for (int k = 0; k < 3; k++) {
+        nf[1][k] = 0.5 * (v[k] + w[k]);
+        nf[2][k] = 0.5 * (v[k] - w[k]);
+    }
+    /* each must be a face's normal: a point just beside the corner on
+       face f, off the two others (towards the solid or the flow, as the
+       corner is convex for one or the other), has it as its nearest
+       face's normal */
+    double eps = 1e-7 * hs;
+    for (int f = 1; f < 3; f++) {
+        int ok = 0;
+        for (int sg = -1; sg <= 1 && !ok; sg += 2) {
+            double z[3], nz[3];
+            for (int k = 0; k < 3; k++) z[k] = x[k] + sg * eps * (nf[(f + 1) % 3][k] + nf[(f + 2) % 3][k]);
+            geometry_normal(B->g, leaf, z, nz);
+            ok = fabs(nz[0] - nf[f][0]) + fabs(nz[1] - nf[f][1]) + fabs(nz[2] - nf[f][2]) < 1e-6;
+        }
+        if (!ok) return 0;
+    }
+    /* on the flow side of face 1 and the solid side of faces 2, 3: fluid
+       only at a convex corner of the solid (flow around a box) */
+    double y[3];
+    for (int k = 0; k < 3; k++) y[k] = x[k] - eps * nf[0][k] + eps * (nf[1][k] + nf[2][k]);
+    double sgn = geometry_fluid(B->g, y) ? -1 : 1;
+    int surf = B->g->leaves[leaf].surface;
+    for (int m = 0; m < 8; m++) {
+        /* bit f of m: across face f from the shared seed */
+        double s[3];
+        for (int k = 0; k < 3; k++) s[k] = x[k];
+        for (int f = 0; f < 3; f++) {
+            int across = (m >> f) & 1;
+            for (int k = 0; k < 3; k++) s[k] += (across ? 0.5 : -0.5) * sgn * hs * nf[f][k];
+        }
+        /* convex flow corner: only the shared seed (m = 0) is interior;
+           convex solid corner: only the shared seed is exterior */
+        int interior = sgn > 0 ? m == 0 : m != 0;
+        if (interior) {
+            if (geometry_fluid(B->g, s) && fits_box(B, s, B->a / 2)) try_add(B, s, 1, -1, SEED_BOUNDARY, n);
+        } else if (!geometry_fluid(B->g, s)) {
+            try_add(B, s, 0, surf, SEED_BOUNDARY, n);
+        }
+    }
+    return 1;
+}
+
+/* The first pass: corners, then edges, then each other point's exterior
+   and interior seed.  Corners and edges first: their seeds replace the
+   faces' first pairs, half a spacing from them (shape.c samp_box), not
+   the other way round.  done[p] is set for corner and edge points: they
+   get no layer seeds, since the layers of the faces' samples already
+   form the lattice of nested layers around an edge (the samples half a
+   spacing from it give the layers' seeds nearest to it). */
+static void boundary_pairs(Build *B, const double *px, const double *pn, const int *pl, int np, double hs, char *done)
+{
+    for (int p = 0; p < np; p++) done[p] = (char)orthogonal_corner(B, px + 3 * (size_t)p, pn + 3 * (size_t)p, pl[p], hs);
+    for (int p = 0; p < np; p++)
+        if (!done[p]) done[p] = (char)convex_edge(B, px + 3 * (size_t)p, pn + 3 * (size_t)p, pl[p], hs);
     for (int p = 0; p < np; p++) {
-        if (convex_edge(B, px + 3 * (size_t)p, pn + 3 * (size_t)p, pl[p], hs)) continue;
-        boundary_layer(B, -1, px + 3 * (size_t)p, pn + 3 * (size_t)p, pl + p, 1, hs);
-        boundary_layer(B, 0, px + 3 * (size_t)p, pn + 3 * (size_t)p, pl + p, 1, hs);
+        if (done[p]) continue;
+        boundary_layer(B, -1, px + 3 * (size_t)p, pn + 3 * (size_t)p, pl + p, 1, hs, NULL);
+        boundary_layer(B, 0, px + 3 * (size_t)p, pn + 3 * (size_t)p, pl + p, 1, hs, NULL);
     }
 }
 
@@ -326,6 +511,19 @@ static void cartesian(Build *B, const Mesh *grid, const Hash *samples, const dou
                 int surf = fluid ? -1 : B->g->leaves[geometry_nearest_leaf(B->g, c)].surface;
                 try_add(B, c, fluid, surf, SEED_CARTESIAN, NULL);
             }
+}
+
+/* With a = 0 (minSpacing 0) a Cartesian centre can fall exactly on a
+   boundary seed (a surface on a grid plane, its interior seed h/2 inside,
+   as the centres are), and voronoi_mesh rejects coincident seeds: such a
+   seed is dropped like one closer than a.  The margin covers the strict
+   test of near_any against voronoi_mesh's <=. */
+static double dup_distance(const Build *B)
+{
+    double L = 0;
+    for (int k = 0; k < 3; k++)
+        if (k != B->flat) L = fmax(L, B->hi[k] - B->lo[k]);
+    return 2 * VORONOI_MERGE * L;
 }
 
 static int check_opts(const SeedOpts *o, Err *e)
@@ -382,9 +580,12 @@ int seeds_make(const Mesh *grid, const Geometry *g, const SeedOpts *o, Seeds *s,
     int cap = np * (o->layers + 2) + ncart;
     seeds_alloc(s, cap);
     B.s = s;
-    hash_init(&B.kept, B.a > 0 ? B.a : 1, s->x, cap);
-    boundary_pairs(&B, px, pn, pl, np, hs);
-    for (int i = 1; i <= o->layers; i++) boundary_layer(&B, i, px, pn, pl, np, hs);
+    B.dup = dup_distance(&B);
+    near_init(&B.kept, fmax(2 * B.a, h), B.lo, B.hi, s->x, cap);
+    char *edge = mem_calloc((size_t)(np > 0 ? np : 1), 1);
+    boundary_pairs(&B, px, pn, pl, np, hs, edge);
+    for (int i = 1; i <= o->layers; i++) boundary_layer(&B, i, px, pn, pl, np, hs, edge);
+    free(edge);
     double in_band = (2 * o->layers + 1) * hs / 2 + B.a / 2, out_band = hs / 2 + B.a / 2;
     double reach = in_band + hs;
     Hash samples;
@@ -392,7 +593,7 @@ int seeds_make(const Mesh *grid, const Geometry *g, const SeedOpts *o, Seeds *s,
     for (int p = 0; p < np; p++) hash_insert(&samples, p);
     cartesian(&B, grid, &samples, pn, in_band, out_band, reach, mid);
     hash_free(&samples);
-    hash_free(&B.kept);
+    near_free(&B.kept);
     free(px);
     free(pn);
     free(pl);

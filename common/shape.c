@@ -1207,6 +1207,24 @@ static double samp_mid(double a, double b, int i, int n)
     return a + (b - a) * (i + 0.5) / n;
 }
 
+/* A finite cylinder's mantle: the two rims (edge points, Fig. 3.16) and
+   ns rings at the midpoints of ns equal intervals between them, all
+   aligned.  Aligned rings: the seed pairs of neighbouring rings meet only
+   on the surface (staggered rings give Voronoi grids many small faces
+   between a seed and the next ring's partner: 1.3 % of the area of a
+   cylinder at h = r/7, against 0.1 % aligned).  Midpoints: the edge rule
+   puts the mirror seeds of a rim half a spacing from it, where the first
+   ring's seeds then are too, instead of closer than the minimum
+   spacing. */
+static void samp_cylinder_rings(Samp *S, const Shape *s, const Frame *F, int ns, int m)
+{
+    for (int i = 0; i <= ns + 1; i++) {
+        double t = i == 0 ? 0 : i == ns + 1 ? 1 : samp_mid(0, 1, i - 1, ns), c[3];
+        for (int j = 0; j < 3; j++) c[j] = i == ns + 1 ? s->q[j] : s->p[j] + t * (s->q[j] - s->p[j]);
+        samp_ring(S, F, c, s->r1, m, 0, 1, i == 0 ? -1 : i == ns + 1 ? 1 : 0);
+    }
+}
+
 static void samp_axi(Samp *S, const Shape *s, double h)
 {
     double u[3], H, r1 = s->r1, r2 = s->kind == SHAPE_CONE ? s->r2 : s->r1;
@@ -1216,21 +1234,19 @@ static void samp_axi(Samp *S, const Shape *s, double h)
     double k = (r2 - r1) / H, L = sqrt(1 + k * k);
     int ns = samp_steps(hypot(H, r2 - r1), h);
     int m = samp_ring_count(fmax(r1, r2), h);
-    for (int i = 0; i <= ns; i++) {
-        double t = (double)i / ns, rho = i == ns ? r2 : r1 + t * (r2 - r1), c[3];
-        for (int j = 0; j < 3; j++) c[j] = i == ns ? s->q[j] : s->p[j] + t * (s->q[j] - s->p[j]);
-        double nu = -k / L + (i == 0 ? -1 : i == ns ? 1 : 0);
-        if (!(rho > 0)) {   /* apex: along the axis, away from the base */
-            samp_ring(S, &F, c, 0, 1, 0, 0, k > 0 ? -1 : 1);
-            continue;
+    if (s->kind == SHAPE_CYLINDER) {
+        samp_cylinder_rings(S, s, &F, ns, m);
+    } else {
+        for (int i = 0; i <= ns; i++) {
+            double t = (double)i / ns, rho = i == ns ? r2 : r1 + t * (r2 - r1), c[3];
+            for (int j = 0; j < 3; j++) c[j] = i == ns ? s->q[j] : s->p[j] + t * (s->q[j] - s->p[j]);
+            double nu = -k / L + (i == 0 ? -1 : i == ns ? 1 : 0);
+            if (!(rho > 0)) {   /* apex: along the axis, away from the base */
+                samp_ring(S, &F, c, 0, 1, 0, 0, k > 0 ? -1 : 1);
+                continue;
+            }
+            samp_ring(S, &F, c, rho, samp_ring_count(rho, h), 0.5 * (i % 2), 1 / L, nu);
         }
-        /* a cylinder's rings are aligned, not staggered: the seed pairs
-           of neighbouring rings then meet only on the surface (a
-           staggered pattern gives Voronoi grids many small faces between
-           a seed and the next ring's partner seed, 1.3 % of the area of a
-           cylinder at h = r/7, against 0.1 % aligned) */
-        int cyl = s->kind == SHAPE_CYLINDER, mi = cyl ? m : samp_ring_count(rho, h);
-        samp_ring(S, &F, c, rho, mi, cyl ? 0 : 0.5 * (i % 2), 1 / L, nu);
     }
     if (r1 > 0) samp_disc(S, &F, s->p, r1, h, -1);
     if (r2 > 0) samp_disc(S, &F, s->q, r2, h, 1);
@@ -1279,37 +1295,45 @@ static void samp_torus(Samp *S, const Shape *s, double h)
 }
 
 
+/* Node i of 0..n+1 across [a, b]: the ends (edge points), and between
+   them the midpoints of n equal intervals (see samp_cylinder_rings). */
+static double samp_edge_mid(double a, double b, int i, int n)
+{
+    return i == 0 ? a : i == n + 1 ? b : samp_mid(a, b, i - 1, n);
+}
+
+/* Every face a grid of the edges and the midpoints between them (as a
+   cylinder's rings): the edge rule (Fig. 3.16) puts the mirror seeds of
+   an edge half a spacing from it, where the first row of the faces'
+   seeds then is too, so one replaces the other cleanly instead of
+   standing a fraction of the minimum spacing apart. */
 static void samp_box(Samp *S, const Shape *s, double h)
 {
     int n[3];
     for (int k = 0; k < 3; k++) n[k] = samp_steps(s->q[k] - s->p[k], h);
-    for (int i = 0; i <= n[0]; i++)
-        for (int j = 0; j <= n[1]; j++) {
-            int inner = i > 0 && i < n[0] && j > 0 && j < n[1];
-            for (int l = 0; l <= n[2]; l += inner ? n[2] : 1) {
+    for (int i = 0; i <= n[0] + 1; i++)
+        for (int j = 0; j <= n[1] + 1; j++) {
+            int inner = i > 0 && i <= n[0] && j > 0 && j <= n[1];
+            for (int l = 0; l <= n[2] + 1; l += inner ? n[2] + 1 : 1) {
                 int idx[3] = {i, j, l};
                 double x[3], nv[3];
                 for (int k = 0; k < 3; k++) {
-                    x[k] = samp_node(s->p[k], s->q[k], idx[k], n[k]);
-                    nv[k] = idx[k] == 0 ? -1 : idx[k] == n[k] ? 1 : 0;
+                    x[k] = samp_edge_mid(s->p[k], s->q[k], idx[k], n[k]);
+                    nv[k] = idx[k] == 0 ? -1 : idx[k] == n[k] + 1 ? 1 : 0;
                 }
                 samp_add(S, x, nv);
             }
         }
 }
 
-/* Node j of nz along a polygon's axis: ends with a cap exact (edge
-   points), ends on the box midpoint-shifted (samp_mid); NAN for the extra
-   node that shift leaves over. */
+/* Node j of 0..nz+1 along a polygon prism's axis: capped ends are edge
+   points, and between them the midpoints of nz intervals (samp_box); an
+   end on the box has no node (half an interval from it); NAN for no
+   node. */
 static double polygon_z(double za, double zb, int j, int nz, int cap_lo, int cap_hi)
 {
-    if (cap_lo && cap_hi) return samp_node(za, zb, j, nz);
-    if (!cap_lo && !cap_hi) return j < nz ? samp_mid(za, zb, j, nz) : NAN;
-    /* one cap: nodes from the capped end at spacing (zb - za) / nz, the
-       last half a spacing from the box */
-    double dz = (zb - za) / (nz - 0.5);
-    if (j == nz) return NAN;
-    return cap_lo ? za + j * dz : zb - j * dz;
+    if ((j == 0 && !cap_lo) || (j == nz + 1 && !cap_hi)) return NAN;
+    return samp_edge_mid(za, zb, j, nz);
 }
 
 /* The polygon's sides between z = za and zb (caps where cap_lo / cap_hi),
@@ -1324,16 +1348,17 @@ static void samp_polygon(Samp *S, const Shape *s, double h, double za, double zb
         poly_wall_normal(s, e, ne);
         poly_wall_normal(s, (e + np - 1) % np, nprev);
         int m = samp_steps(hypot(Q[0] - P[0], Q[1] - P[1]), h);
-        for (int i = 0; i < m; i++)
-            for (int j = 0; j <= nz; j++) {
-                double x[3], nv[3];
-                x[iu] = P[0] + (Q[0] - P[0]) * i / m;
-                x[iv] = P[1] + (Q[1] - P[1]) * i / m;
+        /* the vertex line (i = 0), then the midpoints of m intervals */
+        for (int i = 0; i <= m; i++)
+            for (int j = 0; j <= nz + 1; j++) {
+                double x[3], nv[3], t = i == 0 ? 0 : (i - 0.5) / m;
+                x[iu] = P[0] + (Q[0] - P[0]) * t;
+                x[iv] = P[1] + (Q[1] - P[1]) * t;
                 x[a] = polygon_z(za, zb, j, nz, cap_lo, cap_hi);
                 if (!isfinite(x[a])) continue;
                 for (int k = 0; k < 3; k++) nv[k] = ne[k] + (i == 0 ? nprev[k] : 0);
-                if (j == 0 && cap_lo) nv[a] -= 1;
-                if (j == nz && cap_hi) nv[a] += 1;
+                if (j == 0) nv[a] -= 1;
+                if (j == nz + 1) nv[a] += 1;
                 samp_add(S, x, nv);
             }
     }

@@ -198,17 +198,23 @@ TEST(seeds_csg_part)
             double dr = r - 0.15, want = s.interior[i] ? 0.025 : -0.025;
             bad += fabs(dr - want) > 1e-12 && fabs(dr - 3 * want) > 1e-12;
         }
-        /* corner pairs: normal (1 1 1)/sqrt 3 at (0.9 0.7 0.5) */
-        double c[3] = {0.9, 0.7, 0.5}, t = 0.025 / sqrt(3);
+        /* the corner (0.9 0.7 0.5), normal (1 1 1)/sqrt 3: the eight
+           corners of the cube of side h about it, the one inside the box
+           interior (Fig. 3.16 for three orthogonal faces) */
+        double c[3] = {0.9, 0.7, 0.5};
         if (fabs(v[0] - 1 / sqrt(3)) < 1e-12 && fabs(v[1] - v[0]) < 1e-12 && fabs(v[2] - v[0]) < 1e-12) {
-            double want = s.interior[i] ? -t : t;
-            bad += fabs(x[0] - c[0] - want) > 1e-12 || fabs(x[1] - c[1] - want) > 1e-12;
+            int inside = 1;
+            for (int k = 0; k < 3; k++) {
+                bad += fabs(fabs(x[k] - c[k]) - 0.025) > 1e-12;
+                inside &= x[k] < c[k];
+            }
+            bad += inside != s.interior[i];
             nbox_corner++;
         }
     }
     EXPECT(bad == 0, "%d boundary seeds off their normal lines", bad);
     EXPECT(nhole > 0, "no seeds for the hole");
-    EXPECT(nbox_corner == 2, "%d seeds of the corner (0.9 0.7 0.5), expected its pair", nbox_corner);
+    EXPECT(nbox_corner == 8, "%d seeds of the corner (0.9 0.7 0.5), expected 8", nbox_corner);
     seeds_free(&s);
     mesh_free(&m);
     geometry_free(&g);

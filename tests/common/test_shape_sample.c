@@ -200,12 +200,18 @@ TEST(sample_box)
     EXPECT(!shape_check(&s), "check");
     double h = 0.1;
     Stats st = check(&s, h, NULL, NULL, shape_area(&s));
-    expect_good("box", st, h, 1.0, 1.2);
-    /* intervals 10, 7, 3: 4 (9 + 6 + 2) edge-interior points and 8 corners */
-    EXPECT(st.nedge == 4 * (9 + 6 + 2) + 8, "box: %d edge points, expected %d", st.nedge, 4 * 17 + 8);
-    /* every lattice node of the surface: (11 8 4) lattice minus its inside */
-    EXPECT(st.n == 11 * 8 * 4 - 9 * 6 * 2, "box: %d points, expected %d", st.n, 11 * 8 * 4 - 9 * 6 * 2);
-    expect_scaling("box", &s, 0.05, NULL, NULL);
+    /* the faces' nodes are the edges and the midpoints of 10, 7, 3
+       intervals between them (shape.c samp_box): an edge and the first
+       midpoint are half an interval apart, the nearest pair 0.65 / 14 */
+    Stats rest = st;
+    rest.frac_ok = 1, rest.nn_min = h;
+    expect_good("box", rest, h, 1.0, 1.5);   /* the extra rows at the edges */
+    NEAR(st.nn_min, 0.65 / 14, 1e-12);
+    /* 4 (10 + 7 + 3) edge-interior points and 8 corners */
+    EXPECT(st.nedge == 4 * (10 + 7 + 3) + 8, "box: %d edge points, expected %d", st.nedge, 4 * 20 + 8);
+    /* every node of the (12 9 5) lattice on the surface */
+    EXPECT(st.n == 12 * 9 * 5 - 10 * 7 * 3, "box: %d points, expected %d", st.n, 12 * 9 * 5 - 10 * 7 * 3);
+    expect_scaling("box", &s, 0.01, NULL, NULL);   /* fine: the edge rows are O(1/h) */
 }
 
 TEST(sample_cylinder)
@@ -217,7 +223,17 @@ TEST(sample_cylinder)
     EXPECT(!shape_check(&s), "check");
     double h = 0.06;
     Stats st = check(&s, h, NULL, NULL, shape_area(&s));
-    expect_good("cylinder", st, h, 0.95, 1.15);
+    /* the mantle's rings sit at the midpoints of ns intervals between the
+       rims, so the rim and the first ring are only half an interval
+       (~h/2) apart (shape.c samp_cylinder_rings): the spacing
+       expectations of expect_good hold for the rest */
+    int ns = (int)ceil(sqrt(0.8 * 0.8 + 0.3 * 0.3 + 0.7 * 0.7) / h - 1e-9);
+    double half = 0.5 * sqrt(0.8 * 0.8 + 0.3 * 0.3 + 0.7 * 0.7) / ns;
+    Stats rest = st;
+    rest.frac_ok = 1, rest.nn_min = h;
+    expect_good("cylinder", rest, h, 0.95, 1.15);
+    NEAR(st.nn_min, half, 1e-9);
+    EXPECT(st.frac_ok >= 0.8, "cylinder: only %.3f of the nearest-neighbour distances in [0.5h, 1.5h]", st.frac_ok);
     int m = (int)floor(2 * PI_ * 0.35 / h + 0.5);
     EXPECT(st.nedge == 2 * m, "cylinder: %d rim points, expected %d", st.nedge, 2 * m);
     expect_scaling("cylinder", &s, 0.04, NULL, NULL);
@@ -267,16 +283,25 @@ TEST(sample_polygon)
     EXPECT(!shape_check(&s), "check");
     double h = 0.05;
     Stats st = check(&s, h, NULL, NULL, shape_area(&s));
-    expect_good("polygon", st, h, 0.95, 1.15);
-    /* perimeter 4.4 in 88 steps of 0.05: 88 rim points per cap, 6
-       vertex lines of 13 interior points */
-    EXPECT(st.nedge == 2 * 88 + 6 * 13, "polygon: %d edge points, expected %d", st.nedge, 2 * 88 + 6 * 13);
+    /* edges and vertex lines, then midpoints (shape.c samp_polygon): an
+       edge and the first midpoint are half a spacing apart */
+    Stats rest = st;
+    rest.frac_ok = 1, rest.nn_min = h;
+    expect_good("polygon", rest, h, 0.95, 1.3);
+    NEAR(st.nn_min, 0.5 * h, 1e-12);
+    /* perimeter 4.4 in 88 steps of 0.05: 6 vertices and 88 midpoints on
+       each cap's rim, 6 vertex lines of the 14 midpoints between the
+       caps */
+    EXPECT(st.nedge == 2 * 94 + 6 * 14, "polygon: %d edge points, expected %d", st.nedge, 2 * 94 + 6 * 14);
     expect_scaling("polygon", &s, 0.04, NULL, NULL);
     /* unbounded along y: walls only, inside the box */
     double lo[3] = {-1, -0.25, -1}, hi[3] = {1, 0.25, 1};
     s.lo = -INFINITY, s.hi = INFINITY;
     st = check(&s, h, lo, hi, 4.4 * 0.5);
-    expect_good("unbounded polygon", st, h, 0.95, 1.15);
+    rest = st;
+    rest.frac_ok = 1, rest.nn_min = h;
+    expect_good("unbounded polygon", rest, h, 0.95, 1.3);
+    NEAR(st.nn_min, 0.5 * h, 1e-12);
     /* midpoint-shifted along y (half a spacing from the box sides): 10 */
     EXPECT(st.nedge == 6 * 10, "unbounded polygon: %d vertex-line points, expected 6 x 10", st.nedge);
     double *x, *n;
@@ -373,10 +398,10 @@ TEST(geometry_sample_csg)
         }
     }
     EXPECT(inhole == 0, "%d box points inside the hole kept", inhole);
-    /* the hole's side: rings every 0.05 from z = 0 to 0.6, of
-       round(2 pi 0.15 / h) = 19 points; the 7 between the box's faces are
-       kept, the 2 on them (the CSG edge) may go either way */
-    EXPECT(nmid == 7 * 19 && nhole <= 9 * 19, "%d hole points, %d inside the box, expected %d", nhole, nmid, 7 * 19);
+    /* the hole's side: rims at z = 0 and 0.6 and 12 rings at the
+       midpoints z = 0.025, 0.075, ..., of round(2 pi 0.15 / h) = 19
+       points; the 8 between the box's faces (0.125 .. 0.475) are kept */
+    EXPECT(nmid == 8 * 19 && nhole == 8 * 19, "%d hole points, %d inside the box, expected %d", nhole, nmid, 8 * 19);
     free(x), free(n), free(leaf);
     geometry_free(&g);
 }
@@ -431,8 +456,8 @@ TEST(geometry_sample_2d_rectangle)
     double h = 0.05, *x, *n;
     int *leaf;
     int np = geometry_sample(&g, h, &x, &n, &leaf);
-    /* sides 0.4 and 0.3: 8 + 6 + 8 + 6 nodes */
-    EXPECT(np == 28, "rectangle: %d points, expected 28", np);
+    /* sides 0.4 and 0.3: 4 corners and 8 + 6 + 8 + 6 midpoints */
+    EXPECT(np == 32, "rectangle: %d points, expected 32", np);
     double c = cos(PI_ / 6), s = sin(PI_ / 6);
     int corners = 0, bad = 0;
     for (int i = 0; i < np; i++) {
