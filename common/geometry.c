@@ -867,6 +867,100 @@ static double leaf_distance(const GeoNode *n, const double x[3])
     return d;
 }
 
+/* Point of primitive leaf n's surface nearest to x (for a transformed
+   leaf: the image of the nearest point in its own coordinates, a point of
+   the surface near x). */
+static void leaf_closest(const Geometry *g, const GeoNode *n, const double x[3], double c[3])
+{
+    double l[3], cl[3];
+    to_local(n, x, l);
+    shape_closest(&n->shape, l, cl);
+    if (n->has_xf) {
+        mat_vec(n->A, cl, c);
+        for (int k = 0; k < 3; k++) c[k] += n->b[k];
+    } else {
+        memcpy(c, cl, sizeof cl);
+    }
+    if (g->flat_axis >= 0) c[g->flat_axis] = g->flat_coord;
+}
+
+/* Is x on an edge of the domain between leaves a and b (normals na, nb,
+   the domain's)?  The four points beside x, on either side of both
+   surfaces, must show one fluid and three solid quarters, or three fluid
+   and one solid, the odd one where both normals say so. */
+static int curve_is_edge(const Geometry *g, const double x[3], const double na[3], const double nb[3], double eps)
+{
+    int f[4];
+    for (int q = 0; q < 4; q++) {
+        double sa = q & 1 ? 1 : -1, sb = q & 2 ? 1 : -1, y[3];
+        for (int k = 0; k < 3; k++) y[k] = x[k] + eps * (sa * na[k] + sb * nb[k]);
+        f[q] = geometry_fluid(g, y);
+    }
+    /* q = 0: the flow side of both; q = 3: the solid side of both */
+    return f[0] && !f[3] && f[1] == f[2];
+}
+
+/* Alternating projections from x onto the surfaces of leaves a and b: a
+   point on both (their intersection curve, where they cross) when they
+   converge; 0 otherwise. */
+static int curve_project(const Geometry *g, int a, int b, const double x[3], double tol, double q[3])
+{
+    const GeoNode *na = g->leaves[a].node, *nb = g->leaves[b].node;
+    double y[3];
+    memcpy(q, x, 3 * sizeof *q);
+    for (int it = 0; it < 60; it++) {
+        leaf_closest(g, nb, q, y);
+        leaf_closest(g, na, y, q);
+        double d = sqrt((q[0] - y[0]) * (q[0] - y[0]) + (q[1] - y[1]) * (q[1] - y[1]) + (q[2] - y[2]) * (q[2] - y[2]));
+        if (d <= tol) return 1;
+    }
+    return 0;
+}
+
+int geometry_sample_curves(const Geometry *g, double h, const double *px, const int *pl, int np, double **x,
+                           int **la, int **lb)
+{
+    int n = 0, cap = 0;
+    *x = NULL;
+    *la = *lb = NULL;
+    double L = 0;
+    for (int p = 0; p < np; p++)
+        for (int k = 0; k < 3; k++) L = fmax(L, fabs(px[3 * (size_t)p + k]));
+    double tol = 1e-12 * (L > 1 ? L : 1);
+    for (int p = 0; p < np; p++) {
+        int a = pl[p];
+        if (g->leaves[a].node->op != G_PRIM) continue;
+        const double *xp = px + 3 * (size_t)p;
+        for (int b = 0; b < g->nleaves; b++) {
+            if (b == a || g->leaves[b].node->op != G_PRIM) continue;
+            double c[3], q[3], va[3], vb[3];
+            leaf_closest(g, g->leaves[b].node, xp, c);
+            double d = sqrt((c[0] - xp[0]) * (c[0] - xp[0]) + (c[1] - xp[1]) * (c[1] - xp[1]) +
+                            (c[2] - xp[2]) * (c[2] - xp[2]));
+            if (d > h || !curve_project(g, a, b, xp, tol, q)) continue;
+            /* the curve within reach of this sample only */
+            double dq = sqrt((q[0] - xp[0]) * (q[0] - xp[0]) + (q[1] - xp[1]) * (q[1] - xp[1]) +
+                             (q[2] - xp[2]) * (q[2] - xp[2]));
+            if (dq > 2 * h) continue;
+            geometry_normal(g, a, q, va);
+            geometry_normal(g, b, q, vb);
+            if (fabs(va[0] * vb[0] + va[1] * vb[1] + va[2] * vb[2]) > 0.985) continue;   /* tangent: no edge */
+            if (!curve_is_edge(g, q, va, vb, 1e-7 * h)) continue;
+            if (n == cap) {
+                cap = cap ? 2 * cap : 64;
+                *x = mem_realloc(*x, sizeof(double) * 3 * (size_t)cap);
+                *la = mem_realloc(*la, sizeof(int) * (size_t)cap);
+                *lb = mem_realloc(*lb, sizeof(int) * (size_t)cap);
+            }
+            memcpy(*x + 3 * (size_t)n, q, sizeof q);
+            (*la)[n] = a;
+            (*lb)[n] = b;
+            n++;
+        }
+    }
+    return n;
+}
+
 int geometry_nearest_leaf(const Geometry *g, const double x0[3])
 {
     return geometry_nearest_leaf_of(g, -1, x0);

@@ -154,6 +154,17 @@ int geometry_sample_box(const Geometry *g, double h, const double lo[3], const d
 enum { GEO_LEAF_SHAPE, GEO_LEAF_CAD, GEO_LEAF_STL };
 int geometry_leaf_kind(const Geometry *g, int leaf);
 
+/* Points on the curves where the surfaces of two primitive leaves meet
+   on an edge of the flow domain (CSG: a boss on a plate, a bore through
+   it; 2-D: the corners of the section where two shapes meet), found from
+   the samples px (leaves pl) within h of another leaf's surface by
+   alternating projections onto the two surfaces.  Several samples reach
+   the same stretch of curve: the points are not thinned.  Returns the
+   count; *x (3 per point) and the two leaves *la, *lb are new arrays
+   (NULL when none).  Used by voronoiGrid's edge rule (seeds.c). */
+int geometry_sample_curves(const Geometry *g, double h, const double *px, const int *pl, int np, double **x,
+                           int **la, int **lb);
+
 /* Patch name and type of a leaf. */
 const char *geometry_leaf_patch(const Geometry *g, int leaf);
 

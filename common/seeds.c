@@ -358,20 +358,51 @@ static void boundary_layer(Build *B, int i, const double *px, const double *pn, 
     }
 }
 
-/* Fig. 3.16 at a convex edge of the flow domain: x is on two faces
-   (normals n1 from geometry_normal, n2 from the mean n = (n1 + n2) / |..|)
-   one seed at distance hs/2 from both faces on the convex side (interior
-   at a convex edge of the flow, exterior at a convex edge of the solid)
-   and its mirror images across each face on the other side.
-   Returns 0 (nothing added) for points on one face or at other edges. */
+/* The seeds of an edge between faces of normals n1, n2 (the domain's,
+   into the solid; surfaces s1, s2 for the exterior seeds across each):
+   one seed s at distance hs/2 from both faces on the convex side
+   (interior at a convex edge of the flow, exterior at a convex edge of the
+   solid) and its mirror images s +- hs n_f across each face, so the
+   bisectors between them are the two faces (Fig. 3.16). */
+static void edge_seeds(Build *B, const double x[3], const double n1[3], const double n2[3], int s1, int s2,
+                       double hs)
+{
+    double n[3], si[3], y[3], eps = 1e-7 * hs;
+    for (int k = 0; k < 3; k++) n[k] = n1[k] + n2[k];
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; k++) n[k] /= len;
+    double c = n1[0] * n[0] + n1[1] * n[1] + n1[2] * n[2];
+    /* on the flow side of face 1 and the solid side of face 2: fluid only
+       at a convex edge of the solid.  sgn +1: convex edge of the flow
+       (shared interior seed), -1: convex edge of the solid (shared
+       exterior seed) */
+    for (int k = 0; k < 3; k++) y[k] = x[k] - eps * n1[k] + eps * n2[k];
+    double sgn = geometry_fluid(B->g, y) ? -1 : 1;
+    for (int k = 0; k < 3; k++) si[k] = x[k] - sgn * hs / 2 / c * n[k];
+    if (sgn < 0 && !geometry_fluid(B->g, si)) try_add(B, si, 0, s1, SEED_BOUNDARY, n);
+    for (int f = 0; f < 2; f++) {
+        const double *nf = f ? n2 : n1;
+        double ye[3];
+        for (int k = 0; k < 3; k++) ye[k] = si[k] + sgn * hs * nf[k];
+        if (sgn > 0 && !geometry_fluid(B->g, ye)) try_add(B, ye, 0, f ? s2 : s1, SEED_BOUNDARY, n);
+        if (sgn < 0 && geometry_fluid(B->g, ye) && fits_box(B, ye, B->a / 2)) try_add(B, ye, 1, -1, SEED_BOUNDARY, n);
+    }
+    if (sgn > 0 && geometry_fluid(B->g, si) && fits_box(B, si, B->a / 2)) try_add(B, si, 1, -1, SEED_BOUNDARY, n);
+}
+
+/* Fig. 3.16 at an edge of a primitive: x is on two faces when the
+   normal n1 of the nearest face (geometry_normal) and its mirror n2 in
+   the mean normal n, n2 = 2 (n.n1) n - n1, is confirmed as the normal
+   just beside the edge on face 2's side; then edge_seeds.  Returns 0
+   (nothing added) for points on one face or on three or more. */
 static int convex_edge(Build *B, const double x[3], const double n[3], int leaf, double hs)
 {
     double n1[3], n2[3], c;
     geometry_normal(B->g, leaf, x, n1);
     c = n1[0] * n[0] + n1[1] * n[1] + n1[2] * n[2];
     if (!(c > 0.1 && c < 1 - 1e-9)) return 0;
-    double y[3], si[3], eps = 1e-7 * hs;
-    for (int k = 0; k < 3; k++) n2[k] = 2 * c * n[k] - n1[k], y[k] = x[k] - eps * n1[k] + eps * n2[k];
+    double eps = 1e-7 * hs;
+    for (int k = 0; k < 3; k++) n2[k] = 2 * c * n[k] - n1[k];
     /* n2 must be a face's normal there (else x is a corner of three or
        more faces): a point just beside the edge, off face 1 towards face
        2, has it as its nearest face's normal */
@@ -383,20 +414,8 @@ static int convex_edge(Build *B, const double x[3], const double n[3], int leaf,
         face2 = fabs(nz[0] - n2[0]) + fabs(nz[1] - n2[1]) + fabs(nz[2] - n2[2]) < 1e-6;
     }
     if (!face2) return 0;
-    /* sgn +1: convex edge of the flow (shared interior seed), -1: convex
-       edge of the solid (shared exterior seed) */
-    double sgn = geometry_fluid(B->g, y) ? -1 : 1;
-    for (int k = 0; k < 3; k++) si[k] = x[k] - sgn * hs / 2 / c * n[k];
     int surf = B->g->leaves[leaf].surface;
-    if (sgn < 0 && !geometry_fluid(B->g, si)) try_add(B, si, 0, surf, SEED_BOUNDARY, n);
-    for (int f = 0; f < 2; f++) {
-        const double *nf = f ? n2 : n1;
-        double ye[3];
-        for (int k = 0; k < 3; k++) ye[k] = si[k] + sgn * hs * nf[k];
-        if (sgn > 0 && !geometry_fluid(B->g, ye)) try_add(B, ye, 0, surf, SEED_BOUNDARY, n);
-        if (sgn < 0 && geometry_fluid(B->g, ye) && fits_box(B, ye, B->a / 2)) try_add(B, ye, 1, -1, SEED_BOUNDARY, n);
-    }
-    if (sgn > 0 && geometry_fluid(B->g, si) && fits_box(B, si, B->a / 2)) try_add(B, si, 1, -1, SEED_BOUNDARY, n);
+    edge_seeds(B, x, n1, n2, surf, surf, hs);
     return 1;
 }
 
@@ -465,6 +484,33 @@ static int orthogonal_corner(Build *B, const double x[3], const double n[3], int
     return 1;
 }
 
+/* Edges where two CSG operands meet (geometry_sample_curves), thinned
+   to points about 3/4 hs apart, each with the edge rule of its two
+   surfaces. */
+static void csg_curves(Build *B, const double *px, const int *pl, int np, double hs)
+{
+    double *cx;
+    int *la, *lb;
+    int nc = geometry_sample_curves(B->g, hs, px, pl, np, &cx, &la, &lb);
+    if (nc > 0) {
+        Near G;
+        near_init(&G, hs, B->lo, B->hi, cx, nc);
+        for (int i = 0; i < nc; i++) {
+            const double *q = cx + 3 * (size_t)i;
+            if (near_any(&G, q, 0.75 * hs) || !fits_box(B, q, 0)) continue;
+            near_insert(&G, i);
+            double n1[3], n2[3];
+            geometry_normal(B->g, la[i], q, n1);
+            geometry_normal(B->g, lb[i], q, n2);
+            edge_seeds(B, q, n1, n2, B->g->leaves[la[i]].surface, B->g->leaves[lb[i]].surface, hs);
+        }
+        near_free(&G);
+    }
+    free(cx);
+    free(la);
+    free(lb);
+}
+
 /* The first pass: corners, then edges, then each other point's exterior
    and interior seed.  Corners and edges first: their seeds replace the
    faces' first pairs, half a spacing from them (shape.c samp_box), not
@@ -477,6 +523,7 @@ static void boundary_pairs(Build *B, const double *px, const double *pn, const i
     for (int p = 0; p < np; p++) done[p] = (char)orthogonal_corner(B, px + 3 * (size_t)p, pn + 3 * (size_t)p, pl[p], hs);
     for (int p = 0; p < np; p++)
         if (!done[p]) done[p] = (char)convex_edge(B, px + 3 * (size_t)p, pn + 3 * (size_t)p, pl[p], hs);
+    csg_curves(B, px, pl, np, hs);
     for (int p = 0; p < np; p++) {
         if (done[p]) continue;
         boundary_layer(B, -1, px + 3 * (size_t)p, pn + 3 * (size_t)p, pl + p, 1, hs, NULL);
