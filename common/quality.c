@@ -250,6 +250,43 @@ static void measure_cells(const Mesh *m, Quality *q)
     if (!q->has_parent) q->frac_min = q->frac_max = NAN;
 }
 
+/* Angle (degrees) between area vector S and direction d: atan2 of the
+   cross and dot products, exact near 0 where acos is not. */
+static double angle_deg(const double S[3], const double d[3])
+{
+    double x[3] = {S[1] * d[2] - S[2] * d[1], S[2] * d[0] - S[0] * d[2], S[0] * d[1] - S[1] * d[0]};
+    return atan2(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]), S[0] * d[0] + S[1] * d[1] + S[2] * d[2]) * RAD2DEG;
+}
+
+static void measure_seeds(const Mesh *m, Quality *q)
+{
+    if (!m->cell_seed) return;
+    q->has_seed = 1;
+    for (int f = 0; f < m->ninternal; f++) {
+        const double *a = m->cell_seed + 3 * (size_t)m->owner[f], *b = m->cell_seed + 3 * (size_t)m->neighbour[f];
+        double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        double ang = angle_deg(m->face_area + 3 * (size_t)f, d);
+        if (ang > q->seed_angle_max) q->seed_angle_max = ang, q->seed_angle_face = f;
+        for (int k = m->face_off[f]; k < m->face_off[f + 1] && len > 0; k++) {
+            const double *p = m->points + 3 * (size_t)m->face_idx[k];
+            double off = 0;
+            for (int j = 0; j < 3; j++) off += (p[j] - 0.5 * (a[j] + b[j])) * d[j] / len;
+            q->seed_offset_max = fmax(q->seed_offset_max, fabs(off));
+        }
+    }
+    for (int c = 0; c < m->ncells; c++) {
+        const double *x = m->cell_seed + 3 * (size_t)c;
+        int in = 1;
+        for (int k = m->cell_off[c]; k < m->cell_off[c + 1] && in; k++) {
+            int f = m->cell_faces[k];
+            const double *fc = m->face_centre + 3 * (size_t)f, *S = m->face_area + 3 * (size_t)f;
+            double t = (x[0] - fc[0]) * S[0] + (x[1] - fc[1]) * S[1] + (x[2] - fc[2]) * S[2];
+            in = (m->owner[f] == c ? t : -t) < 0;
+        }
+        q->nseed_outside += !in;
+    }
+}
+
 void quality_measure(Mesh *m, Quality *q)
 {
     memset(q, 0, sizeof *q);
@@ -260,6 +297,7 @@ void quality_measure(Mesh *m, Quality *q)
     q->ndims = 3 - q->empty[0] - q->empty[1] - q->empty[2];
     measure_faces(m, q);
     measure_cells(m, q);
+    measure_seeds(m, q);
 }
 
 int quality_check(const Mesh *m, const Quality *q, int *nfailed, Err *e)
@@ -327,6 +365,10 @@ void quality_report(const Mesh *m, const Quality *q, Buf *out)
                q->nnegvol);
     buf_printf(out, "    Non-orthogonality Max: %.6g average: %.6g (face %d)\n", q->nonorth_max,
                q->nonorth_avg, q->nonorth_face);
+    if (q->has_seed)
+        buf_printf(out, "    Voronoi seeds: faces against seed segments Max: %.3g degrees (face %d), face points off "
+                        "the bisector Max: %.3g, seeds outside their cells: %d\n",
+                   q->seed_angle_max, q->seed_angle_face, q->seed_offset_max, q->nseed_outside);
     buf_printf(out, "    Severely non-orthogonal (> %g degrees) faces: %d\n", QUALITY_NONORTH_SEVERE,
                q->nnonorth);
     buf_printf(out, "    Max skewness = %.6g (face %d), highly skew (> %g) faces: %d\n", q->skew_max,

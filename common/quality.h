@@ -63,6 +63,15 @@ typedef struct Quality {
     int skew_face, nskew;      /* face of the maximum; faces above QUALITY_SKEW_HIGH */
     double aspect_max;
     int aspect_cell, naspect;  /* cell of the maximum; cells above QUALITY_ASPECT_HIGH */
+
+    /* Voronoi grids (cellSeed present): internal faces against the
+       segments between their cells' seeds, which they must be normal to
+       and bisect (ICCM^V, spec §2.4) */
+    int has_seed;
+    double seed_angle_max;     /* degrees */
+    int seed_angle_face;
+    double seed_offset_max;    /* largest distance of a face point from its bisector plane */
+    int nseed_outside;         /* seeds not strictly inside their own cell */
 } Quality;
 
 /* cos of the non-orthogonality angle of area vector S against d (OpenFOAM:

@@ -6,7 +6,9 @@
 #     point counts, same total volume to 1e-12 relative, same patches);
 #   - a sphere (r = 0.3) on a 24^3 grid: fluid volume within 1.5e-3 of
 #     1 - 4/3 pi r^3 (measured 5.3e-4: second-order error at h = r/7.2),
-#     smallest cell volume >= pi a^3/6 as printed, checkGrid "Grid OK.",
+#     smallest cell volume >= pi a^3/6 as printed, checkGrid "Grid OK."
+#     and its Voronoi line (faces within 1e-6 deg of the seed segments,
+#     points within 1e-12 of the bisectors, every seed in its cell),
 #     checkMesh (when installed) "Mesh OK.", cellSeed with one seed per
 #     cell and boundaryNormal with one unit normal per boundary face;
 #   - the sphere as a STEP model through gmsh (exact CAD normals): no STL
@@ -117,6 +119,15 @@ else
 fi
 "$BIN/checkGrid" -case sphere >sphere/log.checkGrid 2>&1 && grep -q 'Grid OK' sphere/log.checkGrid &&
     pass voronoiGrid_sphere_checkGrid || fail voronoiGrid_sphere_checkGrid "$(tail -n 3 sphere/log.checkGrid)"
+# checkGrid's Voronoi line: faces normal to and bisecting the seed segments
+vl=$(grep 'Voronoi seeds' sphere/log.checkGrid)
+va=$(sed -n 's/.*seed segments Max: \([0-9.eE+-]*\) degrees.*/\1/p' <<<"$vl")
+vo=$(sed -n 's/.*bisector Max: \([0-9.eE+-]*\),.*/\1/p' <<<"$vl")
+if [ -n "$va" ] && le "$va" 1e-6 && le "$vo" 1e-12 && grep -q 'outside their cells: 0$' <<<"$vl"; then
+    pass voronoiGrid_checkGrid_seeds "$(sed 's/^ *//' <<<"$vl")"
+else
+    fail voronoiGrid_checkGrid_seeds "line: $vl"
+fi
 if command -v checkMesh >/dev/null 2>&1; then
     export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
     header controlDict >sphere/system/controlDict
