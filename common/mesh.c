@@ -191,6 +191,22 @@ static int normal_axis(const double S[3])
     return -1;
 }
 
+/* Twice the area vector of polygon idx[0..n), about its first point: only
+   its direction matters here, so no centroid (geom_face) is needed. */
+static void newell_normal(const double *pts, const int *idx, int n, double S[3])
+{
+    const double *p0 = pts + 3 * (size_t)idx[0];
+    S[0] = S[1] = S[2] = 0;
+    for (int k = 1; k + 1 < n; k++) {
+        const double *a = pts + 3 * (size_t)idx[k], *b = pts + 3 * (size_t)idx[k + 1];
+        double u[3] = {a[0] - p0[0], a[1] - p0[1], a[2] - p0[2]};
+        double v[3] = {b[0] - p0[0], b[1] - p0[1], b[2] - p0[2]};
+        S[0] += u[1] * v[2] - u[2] * v[1];
+        S[1] += u[2] * v[0] - u[0] * v[2];
+        S[2] += u[0] * v[1] - u[1] * v[0];
+    }
+}
+
 int mesh_empty_axis(const Mesh *m)
 {
     int axis = -1, nempty = 0;
@@ -199,12 +215,12 @@ int mesh_empty_axis(const Mesh *m)
         if (strcmp(pa->type, "empty") != 0) continue;
         for (int f = pa->start; f < pa->start + pa->size; f++) {
             if (f < 0 || f >= m->nfaces) return -1;
-            double S[3], C[3];
+            double S[3];
             const double *Sp = S;
             if (m->face_area)
                 Sp = m->face_area + 3 * (size_t)f;
             else
-                geom_face(m->points, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], S, C);
+                newell_normal(m->points, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], S);
             int a = normal_axis(Sp);
             if (a < 0 || (axis >= 0 && a != axis)) return -1;
             axis = a;

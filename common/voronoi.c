@@ -34,6 +34,11 @@
 ** VORONOI_MERGE x (box size) to an earlier one is that one (the nearest;
 ** an exact copy of an earlier query always gets the earlier answer).  The
 ** cell is stored as polygons of global point numbers, sorted by label.
+** 2-D: the cell is stored as its polygon only (global points of the
+** plane at lo, edge labels), and a vertex's name {i, a, b} is looked up
+** in the polygons of the kept seeds among a and b made before i instead
+** of a table of names: the same answer, without touching memory for every
+** vertex (fresh memory is what big grids spend their time on).
 **
 ** Pass 2: the face between kept seeds i < j is the polygon cell i stored;
 ** cell j uses its reverse, so the two cells see exactly the same points.
@@ -52,6 +57,13 @@
 ** cell still open is an error naming its seed, never a silently broken
 ** grid.  The faces are then written straight into the Mesh, already in
 ** OpenFOAM's order (write_direct; meshbuild only when they are not).
+** 2-D: a prism is closed by construction, so when no polygon lost a point
+** to welding and every edge between kept cells is the reverse of the
+** neighbour's (rings_regular, the usual case), the steps above change
+** nothing and the prisms are written straight from the polygons
+** (write_rings: side quads, back and front faces, point 2p at lo and
+** 2p+1 at hi); otherwise the polygons become prisms in the store and go
+** through the steps above, so the mesh is the same either way.
 ** Consequence of merging: face points lie on their bisector to round-off
 ** (1e-13 of the box) except near merged points, where they may be off by
 ** up to the merge distance.
@@ -147,19 +159,22 @@ static void buckets_build(Buckets *g, const VoronoiInput *in)
     }
     g->start = mem_calloc(total + 1, sizeof(int));
     g->seed = mem_alloc(sizeof(int) * (size_t)in->nseeds);
-    int *bk = mem_alloc(sizeof(int) * (size_t)in->nseeds);
+    /* counting sort in place (no scratch arrays: fresh memory is dear):
+       start[b + 1] is first the end of bucket b, then, filled from the
+       last seed down, its beginning, which moves to start[b] */
     for (int i = 0; i < in->nseeds; i++) {
         double x[3] = {in->x[3 * i], in->x[3 * i + 1], in->x[3 * i + 2]};
         if (in->flat_axis >= 0) x[in->flat_axis] = in->lo[in->flat_axis];
-        bk[i] = bucket_of(g, x);
-        g->start[bk[i] + 1]++;
+        g->start[bucket_of(g, x) + 1]++;
     }
     for (size_t b = 0; b < total; b++) g->start[b + 1] += g->start[b];
-    int *fill = mem_alloc(sizeof(int) * total);
-    memcpy(fill, g->start, sizeof(int) * total);
-    for (int i = 0; i < in->nseeds; i++) g->seed[fill[bk[i]]++] = i;
-    free(fill);
-    free(bk);
+    for (int i = in->nseeds - 1; i >= 0; i--) {
+        double x[3] = {in->x[3 * i], in->x[3 * i + 1], in->x[3 * i + 2]};
+        if (in->flat_axis >= 0) x[in->flat_axis] = in->lo[in->flat_axis];
+        g->seed[--g->start[bucket_of(g, x) + 1]] = i;
+    }
+    memmove(g->start, g->start + 1, sizeof(int) * total);
+    g->start[total] = in->nseeds;
 }
 
 static void buckets_free(Buckets *g)
@@ -538,38 +553,44 @@ typedef struct Weld {
     double tol, org[3], h[3];
     int n[3];
     int *head;        /* per bucket: last entry, -1 */
-    double *x;        /* 3 per entry */
-    int *id, *next;   /* per entry */
-    int nent, xcap, icap, ncap;
-    double *pts;      /* 3 per point */
-    int npts, pcap;
+    int *id, *next;   /* per entry: id >= 0, the point it made (its
+                         coordinates are that point's); < 0, -1 - its
+                         place among the extras */
+    int nent, icap, ncap;
+    double *xx;       /* extras (entries that joined an earlier point): 3 each */
+    int *xid;         /* and that point */
+    int nx, xxcap, xicap;
+    double *pts;      /* stride per point (2-D: 6, the copy at hi filled later) */
+    int stride, npts, pcap;
 } Weld;
 
-static void weld_init(Weld *w, const Buckets *g, double tol, size_t expect)
+static void weld_init(Weld *w, const Buckets *g, double tol, int flat, int stride, size_t expect)
 {
     memset(w, 0, sizeof *w);
     w->tol = tol;
+    w->stride = stride;
     size_t nb = 1;
     for (int a = 0; a < 3; a++) {
-        w->n[a] = g->n[a] + 1;
+        /* 2-D: every point is at lo along the flat axis: one layer */
+        w->n[a] = a == flat ? 1 : g->n[a] + 1;
         w->h[a] = g->h[a];
         w->org[a] = g->org[a] - 0.5 * g->h[a];
         nb *= (size_t)w->n[a];
     }
     w->head = mem_alloc(sizeof(int) * nb);
     memset(w->head, 0xff, sizeof(int) * nb);
-    need(&w->x, &w->xcap, 3 * expect, sizeof(double));
     need(&w->id, &w->icap, expect, sizeof(int));
     need(&w->next, &w->ncap, expect, sizeof(int));
-    need(&w->pts, &w->pcap, 3 * expect, sizeof(double));
+    need(&w->pts, &w->pcap, (size_t)stride * expect, sizeof(double));
 }
 
 static void weld_free(Weld *w)
 {
     free(w->head);
-    free(w->x);
     free(w->id);
     free(w->next);
+    free(w->xx);
+    free(w->xid);
     free(w->pts);
 }
 
@@ -596,25 +617,36 @@ static int weld_point(Weld *w, const double x[3])
         for (int iy = lo[1]; iy <= hi[1]; iy++)
             for (int ix = lo[0]; ix <= hi[0]; ix++)
                 for (int q = w->head[ix + w->n[0] * (iy + w->n[1] * iz)]; q >= 0; q = w->next[q]) {
-                    const double *p = w->x + 3 * q;
+                    int id = w->id[q];
+                    const double *p;
+                    if (id >= 0) {
+                        p = w->pts + (size_t)w->stride * (size_t)id;
+                    } else {
+                        p = w->xx + 3 * (size_t)(-1 - id);
+                        id = w->xid[-1 - id];
+                    }
                     double d2 = sq(p[0] - x[0]) + sq(p[1] - x[1]) + sq(p[2] - x[2]);
-                    if (d2 == 0) return w->id[q];
+                    if (d2 == 0) return id;
                     if (d2 <= bd) {
                         bd = d2;
-                        best = w->id[q];
+                        best = id;
                     }
                 }
-    if (best < 0) {
-        need(&w->pts, &w->pcap, 3 * ((size_t)w->npts + 1), sizeof(double));
-        memcpy(w->pts + 3 * w->npts, x, 3 * sizeof(double));
-        best = w->npts++;
-    }
     int q = w->nent++;
-    need(&w->x, &w->xcap, 3 * (size_t)w->nent, sizeof(double));
     need(&w->id, &w->icap, (size_t)w->nent, sizeof(int));
     need(&w->next, &w->ncap, (size_t)w->nent, sizeof(int));
-    memcpy(w->x + 3 * q, x, 3 * sizeof(double));
-    w->id[q] = best;
+    if (best < 0) {
+        need(&w->pts, &w->pcap, (size_t)w->stride * ((size_t)w->npts + 1), sizeof(double));
+        memcpy(w->pts + (size_t)w->stride * (size_t)w->npts, x, 3 * sizeof(double));
+        best = w->npts++;
+        w->id[q] = best;
+    } else {
+        need(&w->xx, &w->xxcap, 3 * ((size_t)w->nx + 1), sizeof(double));
+        need(&w->xid, &w->xicap, (size_t)w->nx + 1, sizeof(int));
+        memcpy(w->xx + 3 * (size_t)w->nx, x, 3 * sizeof(double));
+        w->xid[w->nx] = best;
+        w->id[q] = -1 - w->nx++;
+    }
     int *head = &w->head[k[0] + w->n[0] * (k[1] + w->n[1] * k[2])];
     w->next[q] = *head;
     *head = q;
@@ -754,6 +786,23 @@ static void store_sort_cell(Store *s, int f0, int **tmp, int *tcap)
     }
 }
 
+/* 2-D cells as they come out of the clipper: for cell c the polygon's
+   global 2-D points gid[off[c]..off[c+1]), counter-clockwise, and the
+   label of the edge from each point to the next.  The prism's faces are
+   made from these only when the mesh is written. */
+typedef struct Rings {
+    int *off;                 /* ncells+1 */
+    int *gid, *lab;
+    int n, gcap, lcap;
+} Rings;
+
+static void rings_free(Rings *r)
+{
+    free(r->off);
+    free(r->gid);
+    free(r->lab);
+}
+
 /* ---- pass 1: the cells ---------------------------------------------- */
 
 typedef struct Build {
@@ -772,6 +821,8 @@ typedef struct Build {
     int vlcap;
     int *tmp;
     int tcap;
+    Rings rg;           /* 2-D: the cells as polygons */
+    const int *cell_of; /* per seed: its cell, or -1 */
 } Build;
 
 static int coincide(const VoronoiInput *in, int i, int j, Err *e)
@@ -870,6 +921,27 @@ static int cell3(Build *B, int i, Err *e)
     return 0;
 }
 
+/* 2-D vertex names without a table: the vertex of seed i's cell between
+   edges labelled a and b is named {i, a, b}, and the cells that can have
+   met that name before are those of the kept seeds among a and b that
+   come before i.  The point of cell l's vertex between its edges
+   labelled i and o (in either order), or -1 when l has no cell yet or no
+   such vertex. */
+static int ring_vertex(const Build *B, int l, int i, int o)
+{
+    if (l < 0 || l > i || !B->in->keep[l]) return -1;
+    const Rings *r = &B->rg;
+    int c = B->cell_of[l], r0 = r->off[c], n = r->off[c + 1] - r0;
+    const int *lab = r->lab + r0;
+    for (int e = 0; e < n; e++) {
+        if (lab[e] != i) continue;
+        if (lab[e > 0 ? e - 1 : n - 1] == o) return r->gid[r0 + e];
+        if (lab[e + 1 < n ? e + 1 : 0] == o) return r->gid[r0 + (e + 1 < n ? e + 1 : 0)];
+        return -1;
+    }
+    return -1;
+}
+
 static double clip2_seed(Build *B, int i, int j, double r2)
 {
     int ua = (B->in->flat_axis + 1) % 3, va = (B->in->flat_axis + 2) % 3;
@@ -911,32 +983,45 @@ static int cell2(Build *B, int i, Err *e)
     if (cell_search(B, i, r2, clip2_seed, e)) return -1;
     P = &c->p[c->cur];
     if (P->n < 3) return err_set(e, NULL, 0, "voronoi: the cell of seed %d is empty", i);
-    /* base point p of the plane is point 2p at lo, 2p+1 at hi */
     need(&B->gid, &B->gcap, (size_t)P->n, sizeof(int));
-    need(&B->tmp, &B->tcap, 2 * (size_t)P->n + 4, sizeof(int));
     for (int k = 0; k < P->n; k++) {
         double x[3];
         x[fa] = in->lo[fa];
         x[ua] = P->x[2 * k];
         x[va] = P->x[2 * k + 1];
-        int lab[2] = {P->lab[k > 0 ? k - 1 : P->n - 1], P->lab[k]};
-        int32_t key[4];
-        int low = vertex_name(i, lab, 2, key);
-        B->gid[k] = weld_vertex(&B->w, &B->names, key, low, x);
+        int l0 = P->lab[k > 0 ? k - 1 : P->n - 1], l1 = P->lab[k], g = ring_vertex(B, l0, i, l1);
+        if (g < 0) g = ring_vertex(B, l1, i, l0);
+        B->gid[k] = g >= 0 ? g : weld_point(&B->w, x);
     }
+    Rings *r = &B->rg;
+    need(&r->gid, &r->gcap, (size_t)r->n + (size_t)P->n, sizeof(int));
+    need(&r->lab, &r->lcap, (size_t)r->n + (size_t)P->n, sizeof(int));
+    memcpy(r->gid + r->n, B->gid, sizeof(int) * (size_t)P->n);
+    memcpy(r->lab + r->n, P->lab, sizeof(int) * (size_t)P->n);
+    r->n += P->n;
+    return 0;
+}
+
+/* The prism of 2-D cell c as stored polygons (the general assembly's
+   input): a quad per edge, base point p of the plane being point 2p at
+   lo and 2p+1 at hi, and the back and front faces, sorted by label. */
+static void ring_store(Build *B, int c)
+{
+    int fa = B->in->flat_axis, r0 = B->rg.off[c], n = B->rg.off[c + 1] - r0;
+    const int *gid = B->rg.gid + r0, *lab = B->rg.lab + r0;
+    need(&B->tmp, &B->tcap, 2 * (size_t)n + 4, sizeof(int));
     int f0 = B->st.nf;
     int *q = B->tmp;
-    for (int k = 0; k < P->n; k++) {
-        int a = B->gid[k], b = B->gid[k + 1 < P->n ? k + 1 : 0];
+    for (int k = 0; k < n; k++) {
+        int a = gid[k], b = gid[k + 1 < n ? k + 1 : 0];
         int quad[4] = {2 * a, 2 * b, 2 * b + 1, 2 * a + 1};
-        store_face(&B->st, P->lab[k], quad, 4, 0);
+        store_face(&B->st, lab[k], quad, 4, 0);
     }
-    for (int k = 0; k < P->n; k++) q[k] = 2 * B->gid[k];
-    store_face(&B->st, -1 - 2 * fa, q, P->n, 1);
-    for (int k = 0; k < P->n; k++) q[k] = 2 * B->gid[k] + 1;
-    store_face(&B->st, -1 - (2 * fa + 1), q, P->n, 0);
+    for (int k = 0; k < n; k++) q[k] = 2 * gid[k];
+    store_face(&B->st, -1 - 2 * fa, q, n, 1);
+    for (int k = 0; k < n; k++) q[k] = 2 * gid[k] + 1;
+    store_face(&B->st, -1 - (2 * fa + 1), q, n, 0);
     store_sort_cell(&B->st, f0, &B->tmp, &B->tcap);
-    return 0;
 }
 
 /* ---- pass 2: assembly ----------------------------------------------- */
@@ -1547,8 +1632,8 @@ static int assemble(Build *B, const int *cell_of, const int *seed_of, Mesh *out,
     A.pts = mem_alloc(sizeof(double) * 3 * (size_t)(np > 0 ? np : 1));
     if (flat >= 0) {
         for (int p = 0; p < B->w.npts; p++) {
-            memcpy(A.pts + 6 * p, B->w.pts + 3 * p, 3 * sizeof(double));
-            memcpy(A.pts + 6 * p + 3, B->w.pts + 3 * p, 3 * sizeof(double));
+            memcpy(A.pts + 6 * p, B->w.pts + 6 * p, 3 * sizeof(double));
+            memcpy(A.pts + 6 * p + 3, B->w.pts + 6 * p, 3 * sizeof(double));
             A.pts[6 * p + 3 + flat] = in->hi[flat];
         }
     } else {
@@ -1589,6 +1674,205 @@ static int assemble(Build *B, const int *cell_of, const int *seed_of, Mesh *out,
     free(A.tt);
     edges_free(&A.edges);
     return rc;
+}
+
+/* ---- 2-D: the prisms written straight from the polygons ------------- */
+
+/* Does the edge labelled l of a polygon (n points) go from a to b? */
+static int ring_has(const int *gid, const int *lab, int n, int l, int a, int b)
+{
+    for (int k = 0; k < n; k++)
+        if (lab[k] == l) return gid[k] == a && gid[k + 1 < n ? k + 1 : 0] == b;
+    return 0;
+}
+
+/* Is the general assembly a no-op on the prisms?  It is when no polygon
+   has two points welded into one (no face shrinks or drops, each edge of
+   the prism is used once each way) and every edge between two kept
+   cells is the reverse of the other
+   cell's edge (the cells share that face and are closed, and each
+   internal face goes from its lower cell to a higher one).  Then the
+   mesh is written from the polygons; otherwise the prisms go through the
+   general assembly (repairs, dropped faces), which gives the same mesh
+   in the regular case. */
+static int rings_regular(const Build *B, const int *cell_of, const int *seed_of)
+{
+    const Rings *r = &B->rg;
+    const VoronoiInput *in = B->in;
+    for (int c = 0; c < B->st.ncells; c++) {
+        int r0 = r->off[c], n = r->off[c + 1] - r0, i = seed_of[c];
+        const int *gid = r->gid + r0, *lab = r->lab + r0;
+        for (int k = 0; k < n; k++) {
+            int a = gid[k], b = gid[k + 1 < n ? k + 1 : 0], j = lab[k];
+            for (int m = 0; m < k; m++)
+                if (gid[m] == a) return 0;
+            if (j < 0 || !in->keep[j]) continue;
+            int d = cell_of[j], s0 = r->off[d];
+            if (!ring_has(r->gid + s0, r->lab + s0, r->off[d + 1] - s0, i, b, a)) return 0;
+        }
+    }
+    return 1;
+}
+
+/* The faces of one prism in label order, as (label, edge) pairs; edge n
+   is the back face (at lo), n + 1 the front face. */
+static int prism_order(const Build *B, const int *lab, int n, int *ord)
+{
+    int fa = B->in->flat_axis;
+    for (int k = 0; k < n + 2; k++) {
+        int l = k < n ? lab[k] : k == n ? -1 - 2 * fa : -1 - (2 * fa + 1), q = k;
+        while (q > 0 && ord[2 * (q - 1)] > l) {
+            ord[2 * q] = ord[2 * (q - 1)];
+            ord[2 * q + 1] = ord[2 * (q - 1) + 1];
+            q--;
+        }
+        ord[2 * q] = l;
+        ord[2 * q + 1] = k;
+    }
+    return n + 2;
+}
+
+/* The slot (0: internal, 1 + p: patch p) of a face labelled l of seed
+   i's cell, or -1 when the lower cell across owns it. */
+static int prism_slot(const VoronoiInput *in, int i, int l)
+{
+    if (l < 0) return 1 + in->side_patch[-1 - l];
+    if (!in->keep[l]) return 1 + in->patch[l];
+    return l > i ? 0 : -1;
+}
+
+/* Counts the faces and points of each slot (as plan_faces). */
+static void rings_plan(const Build *B, const int *seed_of, Plan *pl)
+{
+    const Rings *r = &B->rg;
+    const VoronoiInput *in = B->in;
+    int fa = in->flat_axis;
+    memset(pl, 0, sizeof *pl);
+    pl->direct = 1;
+    pl->empty = -1;
+    pl->pface = mem_calloc((size_t)in->npatches, sizeof(int));
+    pl->pidx = mem_calloc((size_t)in->npatches, sizeof(size_t));
+    for (int c = 0; c < B->st.ncells; c++) {
+        int r0 = r->off[c], n = r->off[c + 1] - r0, i = seed_of[c];
+        for (int k = 0; k < n; k++) {
+            int slot = prism_slot(in, i, r->lab[r0 + k]);
+            if (slot < 0) continue;
+            pl->nface++;
+            pl->nidx += 4;
+            if (slot == 0) {
+                pl->nint++;
+                pl->iint += 4;
+            } else {
+                pl->pface[slot - 1]++;
+                pl->pidx[slot - 1] += 4;
+            }
+        }
+        for (int s = 2 * fa; s <= 2 * fa + 1; s++) {
+            pl->nface++;
+            pl->nidx += (size_t)n;
+            pl->pface[in->side_patch[s]]++;
+            pl->pidx[in->side_patch[s]] += (size_t)n;
+        }
+    }
+}
+
+/* Writes cell c's own faces into their places (as put_cell) and its
+   volume (area x thickness) into vs. */
+static void put_prism(const Build *B, const int *cell_of, int c, int i, Mesh *m, Cursor *cur, int **ord,
+                      int *ocap, VoronoiStats *vs)
+{
+    const Rings *r = &B->rg;
+    const VoronoiInput *in = B->in;
+    int r0 = r->off[c], n = r->off[c + 1] - r0;
+    const int *gid = r->gid + r0, *lab = r->lab + r0;
+    need(ord, ocap, 2 * (size_t)n + 4, sizeof(int));
+    int nf = prism_order(B, lab, n, *ord);
+    for (int q = 0; q < nf; q++) {
+        int l = (*ord)[2 * q], k = (*ord)[2 * q + 1], slot = prism_slot(in, i, l);
+        if (slot < 0) continue;
+        int g = cur->face[slot]++;
+        int *dst = m->face_idx + cur->idx[slot], len;
+        if (k < n) {
+            int a = gid[k], b = gid[k + 1 < n ? k + 1 : 0];
+            dst[0] = 2 * a;
+            dst[1] = 2 * b;
+            dst[2] = 2 * b + 1;
+            dst[3] = 2 * a + 1;
+            len = 4;
+        } else if (k == n) {
+            for (int p = 0; p < n; p++) dst[p] = 2 * gid[n - 1 - p];
+            len = n;
+        } else {
+            for (int p = 0; p < n; p++) dst[p] = 2 * gid[p] + 1;
+            len = n;
+        }
+        cur->idx[slot] += (size_t)len;
+        m->face_off[g + 1] = (int)cur->idx[slot];
+        m->owner[g] = c;
+        if (slot == 0) m->neighbour[g] = cell_of[l];
+    }
+    if (!vs) return;
+    int ua = (in->flat_axis + 1) % 3, va = (in->flat_axis + 2) % 3;
+    const double *p0 = B->w.pts + 6 * (size_t)gid[0];
+    double area = 0;
+    for (int k = 1; k + 1 < n; k++) {
+        const double *pa = B->w.pts + 6 * (size_t)gid[k], *pb = B->w.pts + 6 * (size_t)gid[k + 1];
+        area += (pa[ua] - p0[ua]) * (pb[va] - p0[va]) - (pa[va] - p0[va]) * (pb[ua] - p0[ua]);
+    }
+    double vol = 0.5 * area * (in->hi[in->flat_axis] - in->lo[in->flat_axis]);
+    if (c == 0 || vol < vs->vol_min) vs->vol_min = vol;
+    vs->vol_total += vol;
+}
+
+/* The mesh of regular prisms (rings_regular): every weld point is used
+   (each is on its cell's back and front faces). */
+static void write_rings(Build *B, const int *cell_of, const int *seed_of, Mesh *out, VoronoiStats *vs)
+{
+    const VoronoiInput *in = B->in;
+    int fa = in->flat_axis, np = B->w.npts;
+    Plan pl;
+    Cursor cur;
+    rings_plan(B, seed_of, &pl);
+    mesh_alloc(in, &pl, B->st.ncells, out, &cur);
+    if (vs) memset(vs, 0, sizeof *vs);
+    int *ord = NULL, ocap = 0;
+    for (int c = 0; c < B->st.ncells; c++) put_prism(B, cell_of, c, seed_of[c], out, &cur, &ord, &ocap, vs);
+    free(ord);
+    /* the weld's points have room for their copies at hi */
+    out->points = mem_realloc(B->w.pts, sizeof(double) * 6 * (size_t)(np > 0 ? np : 1));
+    B->w.pts = NULL;
+    for (int p = 0; p < np; p++) {
+        double *x = out->points + 6 * (size_t)p;
+        memcpy(x + 3, x, 3 * sizeof(double));
+        x[3 + fa] = in->hi[fa];
+    }
+    out->npoints = 2 * np;
+    free(cur.face);
+    free(cur.idx);
+    plan_free(&pl);
+    if (vs) {
+        vs->ncells = B->st.ncells;
+        vs->ortho_max = ortho_max(out, in, seed_of);
+    }
+}
+
+/* 2-D: the prisms, written directly when regular, else through the
+   general assembly. */
+static int assemble2(Build *B, const int *cell_of, const int *seed_of, Mesh *out, VoronoiStats *vs, Err *e)
+{
+    if (rings_regular(B, cell_of, seed_of)) {
+        write_rings(B, cell_of, seed_of, out, vs);
+        return 0;
+    }
+    Store *s = &B->st;
+    need(&s->lab, &s->lcap, (size_t)B->rg.n + 2 * (size_t)s->ncells, sizeof(int));
+    need(&s->off, &s->ocap, (size_t)B->rg.n + 2 * (size_t)s->ncells + 1, sizeof(int));
+    need(&s->idx, &s->icap, 6 * (size_t)B->rg.n, sizeof(int));
+    for (int c = 0; c < s->ncells; c++) {
+        ring_store(B, c);
+        s->cell_off[c + 1] = s->nf;
+    }
+    return assemble(B, cell_of, seed_of, out, vs, e);
 }
 
 /* ---- input ---------------------------------------------------------- */
@@ -1651,23 +1935,37 @@ int voronoi_mesh(const VoronoiInput *in, Mesh *out, int *seed_of, VoronoiStats *
         if (in->keep[i]) cells[nc++] = i;
     }
     size_t expect = (size_t)nc * (in->flat_axis >= 0 ? 2 : 7);
-    weld_init(&B.w, &B.g, VORONOI_MERGE * B.L, expect);
-    names_init(&B.names, in->nseeds, 4 * expect);
+    weld_init(&B.w, &B.g, VORONOI_MERGE * B.L, in->flat_axis, in->flat_axis >= 0 ? 6 : 3, expect);
+    if (in->flat_axis < 0) names_init(&B.names, in->nseeds, 4 * expect);
+    B.cell_of = cell_of;
     B.st.ncells = nc;
     B.st.cell_off = mem_alloc(sizeof(int) * (size_t)(nc + 1));
-    /* 2-D prisms of a lattice have 6 faces and 24 points; 3-D cells 6
-       (lattice) to about 16 faces (random), 4 to 6 points each */
-    size_t fpc = in->flat_axis >= 0 ? 6 : 10;
-    need(&B.st.lab, &B.st.lcap, fpc * (size_t)nc, sizeof(int));
-    need(&B.st.off, &B.st.ocap, fpc * (size_t)nc + 1, sizeof(int));
-    need(&B.st.idx, &B.st.icap, 4 * fpc * (size_t)nc, sizeof(int));
     B.st.cell_off[0] = 0;
     int rc = 0;
-    for (int c = 0; c < nc && !rc; c++) {
-        rc = in->flat_axis >= 0 ? cell2(&B, cells[c], e) : cell3(&B, cells[c], e);
-        B.st.cell_off[c + 1] = B.st.nf;
+    if (in->flat_axis >= 0) {
+        B.rg.off = mem_alloc(sizeof(int) * (size_t)(nc + 1));
+        B.rg.off[0] = 0;
+        /* a lattice's polygons have 4 points */
+        need(&B.rg.gid, &B.rg.gcap, 4 * (size_t)nc, sizeof(int));
+        need(&B.rg.lab, &B.rg.lcap, 4 * (size_t)nc, sizeof(int));
+        for (int c = 0; c < nc && !rc; c++) {
+            rc = cell2(&B, cells[c], e);
+            B.rg.off[c + 1] = B.rg.n;
+        }
+        if (!rc) rc = assemble2(&B, cell_of, cells, out, st, e);
+    } else {
+        /* 3-D cells have 6 (lattice) to about 16 faces (random), 4 to 6
+           points each */
+        size_t fpc = 10;
+        need(&B.st.lab, &B.st.lcap, fpc * (size_t)nc, sizeof(int));
+        need(&B.st.off, &B.st.ocap, fpc * (size_t)nc + 1, sizeof(int));
+        need(&B.st.idx, &B.st.icap, 4 * fpc * (size_t)nc, sizeof(int));
+        for (int c = 0; c < nc && !rc; c++) {
+            rc = cell3(&B, cells[c], e);
+            B.st.cell_off[c + 1] = B.st.nf;
+        }
+        if (!rc) rc = assemble(&B, cell_of, cells, out, st, e);
     }
-    if (!rc) rc = assemble(&B, cell_of, cells, out, st, e);
     if (!rc && seed_of) memcpy(seed_of, cells, sizeof(int) * (size_t)nc);
     buckets_free(&B.g);
     free(B.s.cand);
@@ -1676,6 +1974,7 @@ int voronoi_mesh(const VoronoiInput *in, Mesh *out, int *seed_of, VoronoiStats *
     weld_free(&B.w);
     names_free(&B.names);
     store_free(&B.st);
+    rings_free(&B.rg);
     free(B.gid);
     free(B.vlab);
     free(B.tmp);
