@@ -3,6 +3,7 @@
 ** patches, cell seeds and boundary normals.
 */
 #include "vgrid.h"
+#include "geom.h"
 #include "mem.h"
 #include "voronoi.h"
 
@@ -19,7 +20,8 @@ static int face_side(const Mesh *m, int f, const double lo[3], const double hi[3
     double c[3] = {0, 0, 0};
     int n = m->face_off[f + 1] - m->face_off[f];
     for (int q = m->face_off[f]; q < m->face_off[f + 1]; q++)
-        for (int a = 0; a < 3; a++) c[a] += m->points[3 * (size_t)m->face_idx[q] + a] / n;
+        for (int a = 0; a < 3; a++) c[a] += m->points[3 * (size_t)m->face_idx[q] + a];
+    for (int a = 0; a < 3; a++) c[a] /= n;
     for (int a = 0; a < 3; a++) {
         if (fabs(c[a] - lo[a]) <= tol) return 2 * a;
         if (fabs(c[a] - hi[a]) <= tol) return 2 * a + 1;
@@ -34,17 +36,19 @@ static int side_patches(const Mesh *grid, const double lo[3], const double hi[3]
     double tol = 0;
     for (int a = 0; a < 3; a++) tol = fmax(tol, 1e-9 * (hi[a] - lo[a]));
     for (int s = 0; s < 6; s++) side_patch[s] = -1;
-    for (int f = grid->ninternal; f < grid->nfaces; f++) {
-        int p = mesh_face_patch(grid, f), s = face_side(grid, f, lo, hi, tol);
-        if (s < 0)
-            return err_set(e, NULL, 0, "grid boundary face %d (patch %s) is not on a side of the box", f,
-                           grid->patches[p].name);
-        if (side_patch[s] >= 0 && side_patch[s] != p)
-            return err_set(e, NULL, 0, "box side %s lies in two patches, %s and %s: voronoiGrid needs one patch "
-                           "per side", "xMin\0xMax\0yMin\0yMax\0zMin\0zMax" + 5 * s,
-                           grid->patches[side_patch[s]].name, grid->patches[p].name);
-        side_patch[s] = p;
-    }
+    for (int p = 0; p < grid->npatches; p++)
+        for (int f = grid->patches[p].start; f < grid->patches[p].start + grid->patches[p].size; f++) {
+            int s = face_side(grid, f, lo, hi, tol);
+            if (s < 0)
+                return err_set(e, NULL, 0, "grid boundary face %d (patch %s) is not on a side of the box", f,
+                               grid->patches[p].name);
+            if (side_patch[s] >= 0 && side_patch[s] != p)
+                return err_set(e, NULL, 0,
+                               "box side %s lies in two patches, %s and %s: voronoiGrid needs one patch per side",
+                               "xMin\0xMax\0yMin\0yMax\0zMin\0zMax" + 5 * s, grid->patches[side_patch[s]].name,
+                               grid->patches[p].name);
+            side_patch[s] = p;
+        }
     for (int s = 0; s < 6; s++)
         if (side_patch[s] < 0)
             return err_set(e, NULL, 0, "box side %s has no boundary face", "xMin\0xMax\0yMin\0yMax\0zMin\0zMax" + 5 * s);
@@ -68,6 +72,14 @@ static double cos_to(const double S[3], const double n[3])
     return s > 0 ? (S[0] * n[0] + S[1] * n[1] + S[2] * n[2]) / s : 1;
 }
 
+/* Area vector and centre of face f: only the boundary faces' are needed
+   here, so the full mesh_geometry (its arrays are the largest part of a
+   2-D grid's memory) is left to the caller. */
+static void face_geom(const Mesh *m, int f, double S[3], double c[3])
+{
+    geom_face(m->points, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], S, c);
+}
+
 /* The exact normal of surface `surf` for face f: at the face centre,
    unless that is far (over 30 deg) from the face's own normal.  That
    happens next to an edge or corner, where the centre of a face on one
@@ -76,7 +88,8 @@ static double cos_to(const double S[3], const double n[3])
    own normal wins (the wall the face lies on). */
 static void surface_normal(const Mesh *m, const Geometry *g, int surf, int f, double n[3])
 {
-    const double *S = m->face_area + 3 * (size_t)f, *c = m->face_centre + 3 * (size_t)f;
+    double S[3], c[3];
+    face_geom(m, f, S, c);
     geometry_normal(g, geometry_nearest_leaf_of(g, surf, c), c, n);
     double best = cos_to(S, n);
     if (best > cos(PI_ / 6)) return;
@@ -101,13 +114,13 @@ static void boundary_normals(Mesh *m, const Geometry *g, int nbox)
     for (int p = 0; p < m->npatches; p++) {
         const Patch *P = &m->patches[p];
         for (int f = P->start; f < P->start + P->size; f++) {
-            double *n = m->wall_normal + 3 * (size_t)(f - m->ninternal);
-            const double *S = m->face_area + 3 * (size_t)f;
+            double *n = m->wall_normal + 3 * (size_t)(f - m->ninternal), S[3], c[3];
             if (p >= nbox) {
                 surface_normal(m, g, p - nbox, f, n);
                 continue;
             }
             /* a box side: the dominant axis of the face's own normal */
+            face_geom(m, f, S, c);
             int a = fabs(S[0]) >= fabs(S[1]) && fabs(S[0]) >= fabs(S[2]) ? 0 : fabs(S[1]) >= fabs(S[2]) ? 1 : 2;
             n[0] = n[1] = n[2] = 0;
             n[a] = S[a] > 0 ? 1 : -1;
@@ -120,11 +133,13 @@ void vgrid_normals(const Mesh *m, int first_surface_patch, double tol, VGridNorm
     memset(r, 0, sizeof *r);
     r->max = -1;
     r->face = -1;
-    if (!m->wall_normal || !m->face_area) return;
+    if (!m->wall_normal) return;
     double total = 0;
     for (int p = first_surface_patch; p < m->npatches; p++)
         for (int f = m->patches[p].start; f < m->patches[p].start + m->patches[p].size; f++) {
-            const double *S = m->face_area + 3 * (size_t)f, *n = m->wall_normal + 3 * (size_t)(f - m->ninternal);
+            const double *n = m->wall_normal + 3 * (size_t)(f - m->ninternal);
+            double S[3], c[3];
+            face_geom(m, f, S, c);
             double area = sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
             /* atan2 of |S x n| and S.n: acos loses half the digits near 0 */
             double x[3] = {S[1] * n[2] - S[2] * n[1], S[2] * n[0] - S[0] * n[2], S[0] * n[1] - S[1] * n[0]};
@@ -203,7 +218,6 @@ int vgrid_mesh(const Mesh *grid0, const Geometry *g0, const SeedOpts *o, Mesh *o
     if (!rc) {
         out->cell_seed = mem_alloc(sizeof(double) * 3 * (size_t)out->ncells);
         for (int c = 0; c < out->ncells; c++) memcpy(out->cell_seed + 3 * c, s.x + 3 * seed_of[c], 3 * sizeof(double));
-        mesh_geometry(out);
         boundary_normals(out, &g, nbox);
         double h = INFINITY;
         for (int a = 0; a < 3; a++)
@@ -212,11 +226,8 @@ int vgrid_mesh(const Mesh *grid0, const Geometry *g0, const SeedOpts *o, Mesh *o
         st->a = o->min_spacing * h;
         st->vol_bound = flat >= 0 ? PI_ * st->a * st->a / 4 * (hi[flat] - lo[flat]) : PI_ * pow(st->a, 3) / 6;
         st->ncells = out->ncells;
-        st->vol_min = INFINITY;
-        for (int c = 0; c < out->ncells; c++) {
-            st->vol_total += out->cell_vol[c];
-            st->vol_min = fmin(st->vol_min, out->cell_vol[c]);
-        }
+        st->vol_min = vs.vol_min;
+        st->vol_total = vs.vol_total;
         for (int p = nbox; p < out->npatches; p++) st->nsurface_faces += out->patches[p].size;
         st->ortho_max = vs.ortho_max;
         st->nfaces_dropped = vs.nfaces_dropped;

@@ -45,7 +45,9 @@ typedef struct VGridStats {
 } VGridStats;
 
 /* Builds the Voronoi grid of `grid` (a block grid with its cartesianGrid
-   extra) and g (NULL or no surfaces: the cell centres only) into out. */
+   extra) and g (NULL or no surfaces: the cell centres only) into out.
+   out's geometry arrays are not filled (mesh_geometry when needed): the
+   volumes in st come from the cells as they are built. */
 int vgrid_mesh(const Mesh *grid, const Geometry *g, const SeedOpts *o, Mesh *out, VGridStats *st, Err *e);
 
 /* Boundary normals against the faces: the angle between each surface

@@ -122,6 +122,7 @@ static int vgrid(Mesh *out, VGridStats *st, int N, int flat, const char *geo, co
     Err e;
     int rc = vgrid_mesh(&grid, geo ? &G.g : NULL, o ? o : &def, out, st, &e);
     if (rc) printf("vgrid_mesh: %s\n", e.msg);
+    else mesh_geometry(out);
     if (geo) geo_free(&G);
     mesh_free(&grid);
     return rc;
@@ -220,6 +221,7 @@ TEST(no_geometry_is_block_grid)
         int rc = vgrid_mesh(&b, NULL, &o, &v, &st, &e);
         EXPECT(!rc, "vgrid_mesh: %s", e.msg);
         if (rc) return;
+        mesh_geometry(&v);
         mesh_geometry(&b);
         mesh_cell_faces(&b);
         char why[256] = "";
@@ -335,7 +337,10 @@ TEST(closed_and_min_volume)
                    t ? "2-D" : "3-D", amin[k], k, m.ncells, vmin, st.vol_bound, vmin / st.vol_bound);
             EXPECT(vmin >= st.vol_bound, "a = %g: smallest volume %g below the bound %g", amin[k], vmin,
                    st.vol_bound);
-            NEAR(vmin, st.vol_min, 0);
+            NEAR(vmin, st.vol_min, 1e-12 * vmin);
+            double vt = 0;
+            for (int c = 0; c < m.ncells; c++) vt += m.cell_vol[c];
+            NEAR(vt, st.vol_total, 1e-12 * vt);
             mesh_free(&m);
         }
 }
@@ -593,6 +598,7 @@ static int random_case(int N, int flat, const char *geo, const SeedOpts *o, int 
         snprintf(why, nwhy, "vgrid_mesh: %s", e.msg);
         return 1;
     }
+    mesh_geometry(&m);
     double ang, off;
     int out;
     voronoi_props(&m, &ang, &off, &out);
