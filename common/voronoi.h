@@ -15,11 +15,15 @@
 ** bisecting the segment between their two seeds.
 **
 ** Robustness: points of a cell closer than VORONOI_MERGE x (box size)
-** are one point, faces of area below VORONOI_MERGE^2 x (box size)^2 are
-** dropped from both cells (the two cells then meet at an edge), and the
-** face between two cells is computed once and shared, so both cells see
-** the same polygon and the mesh is watertight.  Degenerate input (four or
-** more cospherical seeds: the Cartesian lattice) is the normal case.
+** are one point (vertices on three faces are also named by their seeds,
+** so every cell around them gets the same point); a 3-D face of area
+** below (VORONOI_MERGE x box size)^2 whose points all lie within a few
+** merge distances collapses to one point in every cell (a thin face
+** longer than that stays); the face between two cells is computed once
+** and shared, so both cells see the same polygon and the mesh is
+** watertight; every cell is checked closed, and an open one is an error
+** naming its seed.  Degenerate input (four or more cospherical seeds: the
+** Cartesian lattice) is the normal case.  Details in voronoi.c.
 **
 ** 2-D: with flat_axis >= 0 the seeds' coordinate along that axis is
 ** ignored, the cells are prisms one cell thick between lo and hi along
