@@ -31,10 +31,16 @@ static int face_side(const Mesh *m, int f, const double lo[3], const double hi[3
 
 /* side_patch[s]: the grid's patch holding box side s; every boundary
    face of the block grid must be on a side, one patch per side. */
-static int side_patches(const Mesh *grid, const double lo[3], const double hi[3], int side_patch[6], Err *e)
+static double side_tol(const double lo[3], const double hi[3])
 {
     double tol = 0;
     for (int a = 0; a < 3; a++) tol = fmax(tol, 1e-9 * (hi[a] - lo[a]));
+    return tol;
+}
+
+static int side_patches(const Mesh *grid, const double lo[3], const double hi[3], int side_patch[6], Err *e)
+{
+    double tol = side_tol(lo, hi);
     for (int s = 0; s < 6; s++) side_patch[s] = -1;
     for (int p = 0; p < grid->npatches; p++)
         for (int f = grid->patches[p].start; f < grid->patches[p].start + grid->patches[p].size; f++) {
@@ -107,23 +113,23 @@ static void surface_normal(const Mesh *m, const Geometry *g, int surf, int f, do
 
 /* Exact normals: surface faces from the geometry at their centres, box
    sides their axis.  Patch p >= nbox is surface p - nbox. */
-static void boundary_normals(Mesh *m, const Geometry *g, int nbox)
+static void boundary_normals(Mesh *m, const Geometry *g, int nbox, const double lo[3], const double hi[3])
 {
+    double tol = side_tol(lo, hi);
     int nb = m->nfaces - m->ninternal;
     m->wall_normal = mem_alloc(sizeof(double) * 3 * (size_t)(nb > 0 ? nb : 1));
     for (int p = 0; p < m->npatches; p++) {
         const Patch *P = &m->patches[p];
         for (int f = P->start; f < P->start + P->size; f++) {
-            double *n = m->wall_normal + 3 * (size_t)(f - m->ninternal), S[3], c[3];
+            double *n = m->wall_normal + 3 * (size_t)(f - m->ninternal);
             if (p >= nbox) {
                 surface_normal(m, g, p - nbox, f, n);
                 continue;
             }
-            /* a box side: the dominant axis of the face's own normal */
-            face_geom(m, f, S, c);
-            int a = fabs(S[0]) >= fabs(S[1]) && fabs(S[0]) >= fabs(S[2]) ? 0 : fabs(S[1]) >= fabs(S[2]) ? 1 : 2;
+            /* a box side (checked by side_patches): its outward axis */
+            int side = face_side(m, f, lo, hi, tol);
             n[0] = n[1] = n[2] = 0;
-            n[a] = S[a] > 0 ? 1 : -1;
+            n[side / 2] = side & 1 ? 1 : -1;
         }
     }
 }
@@ -218,7 +224,7 @@ int vgrid_mesh(const Mesh *grid0, const Geometry *g0, const SeedOpts *o, Mesh *o
     if (!rc) {
         out->cell_seed = mem_alloc(sizeof(double) * 3 * (size_t)out->ncells);
         for (int c = 0; c < out->ncells; c++) memcpy(out->cell_seed + 3 * c, s.x + 3 * seed_of[c], 3 * sizeof(double));
-        boundary_normals(out, &g, nbox);
+        boundary_normals(out, &g, nbox, lo, hi);
         double h = INFINITY;
         for (int a = 0; a < 3; a++)
             if (a != flat) h = fmin(h, (hi[a] - lo[a]) / cg->n[a]);
