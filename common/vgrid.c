@@ -113,7 +113,26 @@ static void surface_normal(const Mesh *m, const Geometry *g, int surf, int f, do
 
 /* Exact normals: surface faces from the geometry at their centres, box
    sides their axis.  Patch p >= nbox is surface p - nbox. */
-static void boundary_normals(Mesh *m, const Geometry *g, int nbox, const double lo[3], const double hi[3])
+/* The side of box face f of patch p: the patch's only side, or, for a
+   patch on the two sides of one axis (frontAndBack), the one its first
+   point is on; face_side otherwise (a point can lie on two sides). */
+static int box_face_side(const Mesh *m, int f, int p, const int side_patch[6], const double lo[3],
+                         const double hi[3], double tol)
+{
+    int cand[6], nc = 0;
+    for (int s = 0; s < 6; s++)
+        if (side_patch[s] == p) cand[nc++] = s;
+    if (nc == 1) return cand[0];
+    if (nc == 2 && cand[0] / 2 == cand[1] / 2) {
+        int a = cand[0] / 2;
+        double x = m->points[3 * (size_t)m->face_idx[m->face_off[f]] + a];
+        return fabs(x - lo[a]) <= fabs(x - hi[a]) ? 2 * a : 2 * a + 1;
+    }
+    return face_side(m, f, lo, hi, tol);
+}
+
+static void boundary_normals(Mesh *m, const Geometry *g, int nbox, const int side_patch[6], const double lo[3],
+                             const double hi[3])
 {
     double tol = side_tol(lo, hi);
     int nb = m->nfaces - m->ninternal;
@@ -127,7 +146,7 @@ static void boundary_normals(Mesh *m, const Geometry *g, int nbox, const double 
                 continue;
             }
             /* a box side (checked by side_patches): its outward axis */
-            int side = face_side(m, f, lo, hi, tol);
+            int side = box_face_side(m, f, p, side_patch, lo, hi, tol);
             n[0] = n[1] = n[2] = 0;
             n[side / 2] = side & 1 ? 1 : -1;
         }
@@ -224,7 +243,7 @@ int vgrid_mesh(const Mesh *grid0, const Geometry *g0, const SeedOpts *o, Mesh *o
     if (!rc) {
         out->cell_seed = mem_alloc(sizeof(double) * 3 * (size_t)out->ncells);
         for (int c = 0; c < out->ncells; c++) memcpy(out->cell_seed + 3 * c, s.x + 3 * seed_of[c], 3 * sizeof(double));
-        boundary_normals(out, &g, nbox, lo, hi);
+        boundary_normals(out, &g, nbox, side_patch, lo, hi);
         double h = INFINITY;
         for (int a = 0; a < 3; a++)
             if (a != flat) h = fmin(h, (hi[a] - lo[a]) / cg->n[a]);
