@@ -41,6 +41,7 @@
 #include "block.h"
 #include "dict.h"
 #include "geometry.h"
+#include "io.h"
 #include "mem.h"
 #include "mesh.h"
 #include "vgrid.h"
@@ -576,7 +577,21 @@ TEST(bad_input)
 /* ---- random robustness ---------------------------------------------- */
 
 /* One random case; returns 0 when it passes, else writes why. */
-static int random_case(int N, int flat, const char *geo, const SeedOpts *o, int *ncells, char *why, size_t nwhy)
+/* With VGRID_WRITE_DIR set, case c's grid goes to <dir>/c<c>/constant/
+   polyMesh (for the checkMesh study in tests/validation/voronoiCheckMesh). */
+static void write_case(const Mesh *m, int c)
+{
+    const char *dir = getenv("VGRID_WRITE_DIR");
+    if (!dir) return;
+    char p[1024];
+    snprintf(p, sizeof p, "%s/c%05d/constant/polyMesh", dir, c);
+    MeshWriteOpts w = {0, 0};
+    Err e;
+    if (io_mkdir_p(p, &e) || mesh_write(m, p, &w, &e)) printf("  case %d: cannot write %s: %s\n", c, p, e.msg);
+}
+
+static int random_case(int c, int N, int flat, const char *geo, const SeedOpts *o, int *ncells, char *why,
+                       size_t nwhy)
 {
     Mesh m;
     VGridStats st;
@@ -599,6 +614,7 @@ static int random_case(int N, int flat, const char *geo, const SeedOpts *o, int 
         return 1;
     }
     mesh_geometry(&m);
+    write_case(&m, c);
     double ang, off;
     int out;
     voronoi_props(&m, &ang, &off, &out);
@@ -629,7 +645,7 @@ TEST(random_geometries)
         o.layers = (int)(rnd() * 3);
         o.min_spacing = rr(0.3, 0.7);
         snprintf(txt, sizeof txt, "s { type wall; flow %s; %s }", rnd() < 0.5 ? "inside" : "outside", shape);
-        if (random_case(N, flat, txt, &o, &ncells, why, sizeof why)) {
+        if (random_case(c, N, flat, txt, &o, &ncells, why, sizeof why)) {
             if (nfail++ < 5)
                 printf("  case %d (N = %d, %s, layers %d, a = %.3f h): %s\n    %s\n", c, N, flat >= 0 ? "2-D" : "3-D",
                        o.layers, o.min_spacing, why, txt);
