@@ -25,6 +25,7 @@
 #include "mesh.h"
 #include "quality.h"
 #include "test.h"
+#include "fixture.h"
 #include "randgeo.h"
 
 #ifndef M_PI
@@ -33,35 +34,6 @@
 
 /* ---- helpers ---- */
 
-typedef struct Geo {
-    Dict *d;
-    Geometry g;
-} Geo;
-
-/* Parses "surfaces { <text> }"; returns 0 on success. */
-static int geo_make(Geo *G, const char *text)
-{
-    char buf[8192];
-    snprintf(buf, sizeof buf, "surfaces\n{\n%s\n}\n", text);
-    Err e;
-    G->d = dict_parse(buf, strlen(buf), "geometryDict", &e);
-    if (!G->d) {
-        printf("dict_parse: %s\n", e.msg);
-        return -1;
-    }
-    if (geometry_parse(&G->g, G->d, "geometryDict", ".", &e)) {
-        printf("geometry_parse: %s\n", e.msg);
-        dict_free(G->d);
-        return -1;
-    }
-    return 0;
-}
-
-static void geo_free(Geo *G)
-{
-    geometry_free(&G->g);
-    dict_free(G->d);
-}
 
 /* A block grid of the coordinates x[k][0..n[k]]; 2-D (z empty) when twod. */
 static void grid_make(Mesh *m, double *const x[3], const int n[3], int twod)
@@ -168,7 +140,7 @@ static int check_grid(Mesh *m, char *why, size_t nwhy)
 }
 
 /* Cuts grid by G; on failure prints the message and returns -1. */
-static int cut(const Mesh *grid, Geo *G, double snap, Mesh *out, CutStats *st)
+static int cut(const Mesh *grid, FixtureGeo *G, double snap, Mesh *out, CutStats *st)
 {
     CutOpts o;
     cut_opts_default(&o);
@@ -184,9 +156,9 @@ static int cut(const Mesh *grid, Geo *G, double snap, Mesh *out, CutStats *st)
 /* Cuts, checks and returns the fluid volume (NAN on failure, with why). */
 static double cut_check(const Mesh *grid, const char *text, CutStats *st, char *why, size_t nwhy)
 {
-    Geo G;
+    FixtureGeo G;
     snprintf(why, nwhy, "geometry failed");
-    if (geo_make(&G, text)) return NAN;
+    if (fixture_geo(&G, text)) return NAN;
     Mesh m;
     double v = NAN;
     snprintf(why, nwhy, "cut failed");
@@ -194,7 +166,7 @@ static double cut_check(const Mesh *grid, const char *text, CutStats *st, char *
         if (!check_grid(&m, why, nwhy)) v = st->vol_fluid;
         mesh_free(&m);
     }
-    geo_free(&G);
+    fixture_geo_free(&G);
     return v;
 }
 
@@ -412,8 +384,8 @@ TEST(cut_disc_convergence)
         double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 0.1};
         Mesh grid;
         grid_box(&grid, n, lo, hi, 1);
-        Geo G;
-        EXPECT(!geo_make(&G, "disc { flow inside; shape sphere; centre (0.5071 0.4933 0.05); radius 0.31; }"),
+        FixtureGeo G;
+        EXPECT(!fixture_geo(&G, "disc { flow inside; shape sphere; centre (0.5071 0.4933 0.05); radius 0.31; }"),
                "geometry");
         geometry_flatten(&G.g, 2, 0.05);
         Mesh m;
@@ -429,7 +401,7 @@ TEST(cut_disc_convergence)
         ev[r] = fabs(st.vol_fluid - Aex) / Aex;
         printf("  %3d  %.4e  %6.3f\n", ns[r], ev[r], r ? log2(ev[r - 1] / ev[r]) : 0.0);
         mesh_free(&m);
-        geo_free(&G);
+        fixture_geo_free(&G);
         mesh_free(&grid);
     }
     double o = log2(ev[1] / ev[3]) / 2;
@@ -561,8 +533,8 @@ TEST(cut_patches)
     mesh_init(&grid);
     Err e;
     EXPECT(!block_mesh(&grid, x, n, side, NULL, "test", NULL, &e), "%s", e.msg);
-    Geo G;
-    EXPECT(!geo_make(&G, "pipe { shape cylinder; point1 (-1 0.5 0.5); point2 (2 0.5 0.5); radius 0.3; "
+    FixtureGeo G;
+    EXPECT(!fixture_geo(&G, "pipe { shape cylinder; point1 (-1 0.5 0.5); point2 (2 0.5 0.5); radius 0.3; "
                          "infinite yes; flow inside; }"),
            "geometry");
     Mesh m;
@@ -604,25 +576,25 @@ TEST(cut_patches)
     for (int c = 0; c < m.ncells; c++) EXPECT(m.cell_parent[c] >= 0 && m.cell_parent[c] < 120, "parent");
     EXPECT(m.cart.n[0] == 6 && m.cart.n[1] == 5 && m.cart.n[2] == 4, "cart");
     mesh_free(&m);
-    geo_free(&G);
+    fixture_geo_free(&G);
 
-    EXPECT(!geo_make(&G, "walls { shape sphere; centre (0.5 0.5 0.5); radius 0.2; }"), "geometry");
+    EXPECT(!fixture_geo(&G, "walls { shape sphere; centre (0.5 0.5 0.5); radius 0.2; }"), "geometry");
     EXPECT(cut_mesh(&grid, &G.g, NULL, &m, &st, &e) == -1, "name clash accepted");
     CONTAINS(e.msg, "geometryDict:");
     CONTAINS(e.msg, "walls");
-    geo_free(&G);
-    EXPECT(!geo_make(&G, "all { shape sphere; centre (0.5 0.5 0.5); radius 5; }"), "geometry");
+    fixture_geo_free(&G);
+    EXPECT(!fixture_geo(&G, "all { shape sphere; centre (0.5 0.5 0.5); radius 5; }"), "geometry");
     EXPECT(cut_mesh(&grid, &G.g, NULL, &m, &st, &e) == -1, "empty result accepted");
     CONTAINS(e.msg, "no cell is left");
-    geo_free(&G);
+    fixture_geo_free(&G);
     mesh_free(&m);
     Mesh plain;
     mesh_init(&plain);
     plain.ncells = 1;
-    EXPECT(!geo_make(&G, "b { shape sphere; centre (0.5 0.5 0.5); radius 0.2; }"), "geometry");
+    EXPECT(!fixture_geo(&G, "b { shape sphere; centre (0.5 0.5 0.5); radius 0.2; }"), "geometry");
     EXPECT(cut_mesh(&plain, &G.g, NULL, &m, &st, &e) == -1, "grid without cart accepted");
     CONTAINS(e.msg, "Cartesian");
-    geo_free(&G);
+    fixture_geo_free(&G);
     mesh_free(&m);
     mesh_free(&grid);
     for (int k = 0; k < 3; k++) free(x[k]);
@@ -727,7 +699,7 @@ TEST(cut_random)
         Mesh grid;
         grid_box(&grid, n3, lo, hi, twod);
         rand_shape(shape, sizeof shape, 2);
-        Geo G[2];
+        FixtureGeo G[2];
         Mesh m[2];
         CutStats st[2];
         int ok[2] = {0, 0}, made[2] = {0, 0};
@@ -735,7 +707,7 @@ TEST(cut_random)
         mesh_init(&m[1]);
         for (int side = 0; side < 2; side++) {
             snprintf(txt, sizeof txt, "s { flow %s; %s }", side ? "outside" : "inside", shape);
-            if (geo_make(&G[side], txt)) {
+            if (fixture_geo(&G[side], txt)) {
                 printf("bad random geometry: %s\n", txt);
                 nfail++;
                 break;
@@ -785,7 +757,7 @@ TEST(cut_random)
         }
         for (int side = 0; side < 2; side++) {
             mesh_free(&m[side]);
-            if (made[side]) geo_free(&G[side]);
+            if (made[side]) fixture_geo_free(&G[side]);
         }
         mesh_free(&grid);
     }

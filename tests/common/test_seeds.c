@@ -11,6 +11,7 @@
 ** message.
 */
 #include "test.h"
+#include "fixture.h"
 
 #include "block.h"
 #include "geometry.h"
@@ -28,25 +29,9 @@ static int parse(Geometry *g, const char *text, Err *e)
     return rc;
 }
 
-/* Uniform block grid lo..hi with n cells per axis; flat >= 0 makes the
-   two sides normal to that axis empty (a 2-D grid, n[flat] = 1). */
 static void grid(Mesh *m, const double lo[3], const double hi[3], const int n[3], int flat)
 {
-    double *x[3];
-    for (int k = 0; k < 3; k++) {
-        x[k] = mem_alloc(sizeof(double) * (size_t)(n[k] + 1));
-        for (int i = 0; i <= n[k]; i++) x[k][i] = i == n[k] ? hi[k] : lo[k] + (hi[k] - lo[k]) * i / n[k];
-    }
-    BlockSide side[BLOCK_NSIDES];
-    for (int s = 0; s < BLOCK_NSIDES; s++)
-        side[s] = (BlockSide){block_side_names[s], s / 2 == flat ? "empty" : "patch", NULL};
-    Err e;
-    mesh_init(m);
-    if (block_mesh(m, x, n, side, NULL, "test", NULL, &e)) {
-        printf("block_mesh: %s\n", e.msg);
-        exit(1);
-    }
-    for (int k = 0; k < 3; k++) free(x[k]);
+    fixture_block(m, n, lo, hi, flat);
 }
 
 static double dist3(const double *a, const double *b)

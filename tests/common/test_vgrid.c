@@ -36,6 +36,7 @@
 **     (VGRID_RANDOM_CASES=n for a longer study: make validate).
 */
 #include "test.h"
+#include "fixture.h"
 #include "randgeo.h"
 
 #include "block.h"
@@ -48,56 +49,6 @@
 
 static const double PI_ = 3.14159265358979323846;
 
-typedef struct Geo {
-    Dict *d;
-    Geometry g;
-} Geo;
-
-static int geo_make(Geo *G, const char *text)
-{
-    char buf[8192];
-    snprintf(buf, sizeof buf, "surfaces\n{\n%s\n}\n", text);
-    Err e;
-    geometry_init(&G->g);
-    G->d = dict_parse(buf, strlen(buf), "geometryDict", &e);
-    if (!G->d) {
-        printf("dict_parse: %s\n", e.msg);
-        return -1;
-    }
-    if (geometry_parse(&G->g, G->d, "geometryDict", ".", &e)) {
-        printf("geometry_parse: %s\n", e.msg);
-        dict_free(G->d);
-        return -1;
-    }
-    return 0;
-}
-
-static void geo_free(Geo *G)
-{
-    geometry_free(&G->g);
-    dict_free(G->d);
-}
-
-/* Uniform block grid of n cells per axis on lo..hi; flat >= 0: 2-D, the
-   sides normal to that axis empty. */
-static void grid_box(Mesh *m, const int n[3], const double lo[3], const double hi[3], int flat)
-{
-    double *x[3];
-    for (int k = 0; k < 3; k++) {
-        x[k] = mem_alloc(sizeof(double) * (size_t)(n[k] + 1));
-        for (int i = 0; i <= n[k]; i++) x[k][i] = i == n[k] ? hi[k] : lo[k] + (hi[k] - lo[k]) * i / n[k];
-    }
-    BlockSide side[BLOCK_NSIDES];
-    for (int s = 0; s < BLOCK_NSIDES; s++)
-        side[s] = (BlockSide){block_side_names[s], s / 2 == flat ? "empty" : "patch", NULL};
-    Err e;
-    mesh_init(m);
-    if (block_mesh(m, x, n, side, NULL, "test", NULL, &e)) {
-        printf("block_mesh: %s\n", e.msg);
-        exit(1);
-    }
-    for (int k = 0; k < 3; k++) free(x[k]);
-}
 
 /* Unit-box grid, N cells per axis (2-D: one cell of width 1/N along flat). */
 static void grid_unit(Mesh *m, int N, int flat)
@@ -108,7 +59,7 @@ static void grid_unit(Mesh *m, int N, int flat)
         n[flat] = 1;
         hi[flat] = 1.0 / N;
     }
-    grid_box(m, n, lo, hi, flat);
+    fixture_block(m, n, lo, hi, flat);
 }
 
 /* Voronoi grid of the unit-box grid with geometry text (NULL: none). */
@@ -116,15 +67,15 @@ static int vgrid(Mesh *out, VGridStats *st, int N, int flat, const char *geo, co
 {
     Mesh grid;
     grid_unit(&grid, N, flat);
-    Geo G;
-    if (geo && geo_make(&G, geo)) exit(1);
+    FixtureGeo G;
+    if (geo && fixture_geo(&G, geo)) exit(1);
     SeedOpts def;
     seeds_opts_default(&def);
     Err e;
     int rc = vgrid_mesh(&grid, geo ? &G.g : NULL, o ? o : &def, out, st, &e);
     if (rc) printf("vgrid_mesh: %s\n", e.msg);
     else mesh_geometry(out);
-    if (geo) geo_free(&G);
+    if (geo) fixture_geo_free(&G);
     mesh_free(&grid);
     return rc;
 }
@@ -214,7 +165,7 @@ TEST(no_geometry_is_block_grid)
     for (int t = 0; t < 2; t++) {
         int flat = t ? 2 : -1;
         Mesh b, v;
-        grid_box(&b, ns[t], lo, hi, flat);
+        fixture_block(&b, ns[t], lo, hi, flat);
         SeedOpts o;
         seeds_opts_default(&o);
         VGridStats st;
@@ -559,11 +510,11 @@ TEST(bad_input)
     seeds_opts_default(&o);
     VGridStats st;
     Err e;
-    Geo G;
-    if (geo_make(&G, "yMin { type wall; flow outside; shape sphere; centre (0.5 0.5 0.5); radius 0.2; }")) exit(1);
+    FixtureGeo G;
+    if (fixture_geo(&G, "yMin { type wall; flow outside; shape sphere; centre (0.5 0.5 0.5); radius 0.2; }")) exit(1);
     EXPECT(vgrid_mesh(&grid, &G.g, &o, &out, &st, &e) != 0, "a surface named like a grid patch was accepted");
     CONTAINS(e.msg, "has the name of the grid's patch");
-    geo_free(&G);
+    fixture_geo_free(&G);
     for (int k = 0; k < 3; k++) {
         free(grid.cart.x[k]);
         grid.cart.x[k] = NULL;
@@ -597,15 +548,15 @@ static int random_case(int c, int N, int flat, const char *geo, const SeedOpts *
     VGridStats st;
     Mesh grid;
     grid_unit(&grid, N, flat);
-    Geo G;
-    if (geo_make(&G, geo)) {
+    FixtureGeo G;
+    if (fixture_geo(&G, geo)) {
         mesh_free(&grid);
         snprintf(why, nwhy, "bad geometry text");
         return 1;
     }
     Err e;
     int rc = vgrid_mesh(&grid, &G.g, o, &m, &st, &e);
-    geo_free(&G);
+    fixture_geo_free(&G);
     mesh_free(&grid);
     if (rc) {
         /* a geometry that leaves no fluid in the box is refused, rightly */
