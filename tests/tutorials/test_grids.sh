@@ -91,29 +91,17 @@ run_case() {
     if [ -z "$missing" ]; then pass "grids_${name}_files"; else fail "grids_${name}_files" "missing:$missing"; fi
 
     # The numbers: fluid volume, merging, VTK.
-    /usr/bin/python3 - "$case" "$name" "$exact" "$tol" <<'PYEOF'
+    PYTHONDONTWRITEBYTECODE=1 KIESEL_TESTS_PY="$top/tests/tutorials" /usr/bin/python3 - "$case" "$name" "$exact" "$tol" <<'PYEOF'
 import os, re, sys
 
 case, name, exact, tol = sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4])
 
 
-def report(check, ok, why="", note=""):
-    if ok:
-        print("PASS grids_%s_%s%s" % (name, check, (": " + note) if note else ""))
-    else:
-        print("FAIL grids_%s_%s: %s" % (name, check, why))
+sys.path.insert(0, os.environ["KIESEL_TESTS_PY"])
+from gridcheck import Check
 
-
-def log(app):
-    with open(os.path.join(case, "log." + app)) as f:
-        return f.read()
-
-
-def number(pattern, text, what):
-    m = re.search(pattern, text, re.M)
-    if not m:
-        raise ValueError("no %s in the log (pattern %r)" % (what, pattern))
-    return m.group(1)
+chk = Check("grids", case, name)
+report, log, number = chk.report, chk.log, chk.number
 
 
 # --- cutCells: the fluid volume against the exact one ------------------------
@@ -175,46 +163,7 @@ except (OSError, ValueError) as ex:
     report("checkGrid_merged", False, str(ex))
 
 # --- the VTK file, read by VTK's own reader ------------------------------------
-try:
-    import vtk
-    vtk.vtkObject.GlobalWarningDisplayOff()
-    path = os.path.join(case, "VTK", "%s_0.vtk" % name)
-    if not os.path.isfile(path):
-        raise OSError("no %s" % path)
-    r = vtk.vtkUnstructuredGridReader()
-    r.SetFileName(path)
-    r.Update()
-    grid = r.GetOutput()
-    n = grid.GetNumberOfCells()
-    errs, note = [], "%d cells" % n
-    if n != ncells or n == 0:
-        errs.append("VTK's reader finds %d cells in %s, the merged grid has %d"
-                    % (n, os.path.basename(path), ncells))
-    if name == "discInBox":
-        # 2-D: one polygon per cell in a plane z = const, counter-clockwise
-        # seen from +z; area x thickness is the cell volume.  The areas are
-        # the shoelace formula on the points VTK's reader returns: VTK's
-        # own vtkCellSizeFilter gets non-convex polygons (merged cells)
-        # wrong, as it does non-convex polyhedra, so 3-D cases check the
-        # count only.
-        v, nonpositive = 0.0, 0
-        for i in range(n):
-            ids = grid.GetCell(i).GetPointIds()
-            p = [grid.GetPoint(ids.GetId(k)) for k in range(ids.GetNumberOfIds())]
-            a = 0.5 * sum(p[k][0] * p[k - len(p) + 1][1] - p[k - len(p) + 1][0] * p[k][1]
-                          for k in range(len(p)))
-            nonpositive += a <= 0
-            v += a / 64
-        if nonpositive:
-            errs.append("%d polygons not counter-clockwise seen from +z" % nonpositive)
-        if not abs(v - fluid) <= 1e-12 * fluid:
-            errs.append("sum(area) h = %.17g, cutCells' fluid volume %.17g" % (v, fluid))
-        note += ", sum(area) h = fluid volume to %.1e" % (abs(v - fluid) / fluid)
-    report("vtk_reader", not errs, "; ".join(errs), note)
-except ImportError as ex:
-    print("SKIP grids_%s_vtk_reader: no VTK module for python3 (%s)" % (name, ex))
-except Exception as ex:   # any failure of the reader is a failure of the file
-    report("vtk_reader", False, "%s: %s" % (type(ex).__name__, ex))
+chk.vtk_reader(ncells, fluid, 1 / 64 if name == "discInBox" else 0, "the merged grid")
 PYEOF
 
     # OpenFOAM's checkMesh passes the merged grid (SKIP without OpenFOAM).

@@ -106,30 +106,18 @@ run_case() {
     if [ -z "$missing" ]; then pass "voronoi_${name}_files"; else fail "voronoi_${name}_files" "missing:$missing"; fi
 
     # The numbers: fluid volume, smallest cell, normals, checkGrid, VTK.
-    /usr/bin/python3 - "$case" "$name" "$exact" "$tol" "$h" "$thick" "$angtol" "$minarea" <<'PYEOF'
+    PYTHONDONTWRITEBYTECODE=1 KIESEL_TESTS_PY="$top/tests/tutorials" /usr/bin/python3 - "$case" "$name" "$exact" "$tol" "$h" "$thick" "$angtol" "$minarea" <<'PYEOF'
 import math, os, re, sys
 
 case, name = sys.argv[1], sys.argv[2]
 exact, tol, h, thick, angtol, minarea = (float(x) for x in sys.argv[3:9])
 
 
-def report(check, ok, why="", note=""):
-    if ok:
-        print("PASS voronoi_%s_%s%s" % (name, check, (": " + note) if note else ""))
-    else:
-        print("FAIL voronoi_%s_%s: %s" % (name, check, why))
+sys.path.insert(0, os.environ["KIESEL_TESTS_PY"])
+from gridcheck import Check
 
-
-def log(app):
-    with open(os.path.join(case, "log." + app)) as f:
-        return f.read()
-
-
-def number(pattern, text, what):
-    m = re.search(pattern, text, re.M)
-    if not m:
-        raise ValueError("no %s in the log (pattern %r)" % (what, pattern))
-    return m.group(1)
+chk = Check("voronoi", case, name)
+report, log, number = chk.report, chk.log, chk.number
 
 
 vlog = ""
@@ -209,43 +197,8 @@ try:
 except (OSError, ValueError) as ex:
     report("checkGrid", False, str(ex))
 
-# --- the VTK file, read by VTK's own reader --------------------------------------
-try:
-    import vtk
-    vtk.vtkObject.GlobalWarningDisplayOff()
-    path = os.path.join(case, "VTK", "%s_0.vtk" % name)
-    if not os.path.isfile(path):
-        raise OSError("no %s" % path)
-    r = vtk.vtkUnstructuredGridReader()
-    r.SetFileName(path)
-    r.Update()
-    grid = r.GetOutput()
-    n = grid.GetNumberOfCells()
-    errs, note = [], "%d cells" % n
-    if n != ncells or n == 0:
-        errs.append("VTK's reader finds %d cells in %s, voronoiGrid made %d" % (n, os.path.basename(path), ncells))
-    if thick > 0:
-        # 2-D: one polygon per cell in a plane z = const, counter-clockwise
-        # seen from +z; area x thickness is the cell volume (shoelace formula
-        # on the points VTK's reader returns).
-        v, nonpositive = 0.0, 0
-        for i in range(n):
-            ids = grid.GetCell(i).GetPointIds()
-            p = [grid.GetPoint(ids.GetId(k)) for k in range(ids.GetNumberOfIds())]
-            a = 0.5 * sum(p[k][0] * p[k - len(p) + 1][1] - p[k - len(p) + 1][0] * p[k][1]
-                          for k in range(len(p)))
-            nonpositive += a <= 0
-            v += a * thick
-        if nonpositive:
-            errs.append("%d polygons not counter-clockwise seen from +z" % nonpositive)
-        if not abs(v - fluid) <= 1e-12 * fluid:
-            errs.append("sum(area) thickness = %.17g, voronoiGrid's fluid volume %.17g" % (v, fluid))
-        note += ", sum(area) thickness = fluid volume to %.1e" % (abs(v - fluid) / fluid)
-    report("vtk_reader", not errs, "; ".join(errs), note)
-except ImportError as ex:
-    print("SKIP voronoi_%s_vtk_reader: no VTK module for python3 (%s)" % (name, ex))
-except Exception as ex:   # any failure of the reader is a failure of the file
-    report("vtk_reader", False, "%s: %s" % (type(ex).__name__, ex))
+# --- the VTK file, read by VTK's own reader ------------------------------------
+chk.vtk_reader(ncells, fluid, thick, "voronoiGrid")
 PYEOF
 
     # OpenFOAM's checkMesh passes the Voronoi grid (SKIP without OpenFOAM).
