@@ -370,6 +370,22 @@ TEST(volume_converges_csg)
     EXPECT(e <= 3e-4, "error %g at N = 48", e);
 }
 
+TEST(volume_converges_csg_2d)
+{
+    /* 2-D: the union of two overlapping discs, its two corners (where the
+       circles cross) seeded by the edge rule as curve points */
+    static const int ns[] = {16, 32, 64, 128};
+    double r = 0.22, d = sqrt(0.24 * 0.24 + 0.01 * 0.01), e;
+    double lens = 2 * r * r * acos(d / (2 * r)) - d / 2 * sqrt(4 * r * r - d * d);
+    double o = converge("union of two discs (2-D CSG)",
+                        "part { type wall; flow outside; shape union; "
+                        "s1 { shape cylinder; point1 (0.38 0.5 -1); point2 (0.38 0.5 1); radius 0.22; } "
+                        "s2 { shape cylinder; point1 (0.62 0.49 -1); point2 (0.62 0.49 1); radius 0.22; } }",
+                        2, ns, 4, 1 - (2 * PI_ * r * r - lens), &e);
+    EXPECT(o >= 1.8, "order %g", o);
+    EXPECT(e <= 1e-4, "error %g at N = 128", e);
+}
+
 TEST(volume_csg_edges)
 {
     /* box [0.2, 0.8]^3 minus the ball of radius 0.35 at its corner: the
@@ -614,6 +630,7 @@ int main(void)
     RUN(volume_converges_disc);
     RUN(volume_converges_sphere);
     RUN(volume_converges_csg);
+    RUN(volume_converges_csg_2d);
     RUN(volume_csg_edges);
     RUN(boundary_normals);
     RUN(flat_wall_layers);
