@@ -867,6 +867,11 @@ static double leaf_distance(const GeoNode *n, const double x[3])
     return d;
 }
 
+static double dist3(const double a[3], const double b[3])
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
 /* Point of primitive leaf n's surface nearest to x (for a transformed
    leaf: the image of the nearest point in its own coordinates, a point of
    the surface near x). */
@@ -911,8 +916,7 @@ static int curve_project(const Geometry *g, int a, int b, const double x[3], dou
     for (int it = 0; it < 60; it++) {
         leaf_closest(g, nb, q, y);
         leaf_closest(g, na, y, q);
-        double d = sqrt((q[0] - y[0]) * (q[0] - y[0]) + (q[1] - y[1]) * (q[1] - y[1]) + (q[2] - y[2]) * (q[2] - y[2]));
-        if (d <= tol) return 1;
+        if (dist3(q, y) <= tol) return 1;
     }
     return 0;
 }
@@ -935,13 +939,9 @@ int geometry_sample_curves(const Geometry *g, double h, const double *px, const 
             if (b == a || g->leaves[b].node->op != G_PRIM) continue;
             double c[3], q[3], va[3], vb[3];
             leaf_closest(g, g->leaves[b].node, xp, c);
-            double d = sqrt((c[0] - xp[0]) * (c[0] - xp[0]) + (c[1] - xp[1]) * (c[1] - xp[1]) +
-                            (c[2] - xp[2]) * (c[2] - xp[2]));
-            if (d > h || !curve_project(g, a, b, xp, tol, q)) continue;
+            if (dist3(c, xp) > h || !curve_project(g, a, b, xp, tol, q)) continue;
             /* the curve within reach of this sample only */
-            double dq = sqrt((q[0] - xp[0]) * (q[0] - xp[0]) + (q[1] - xp[1]) * (q[1] - xp[1]) +
-                             (q[2] - xp[2]) * (q[2] - xp[2]));
-            if (dq > 2 * h) continue;
+            if (dist3(q, xp) > 2 * h) continue;
             geometry_normal(g, a, q, va);
             geometry_normal(g, b, q, vb);
             if (fabs(va[0] * vb[0] + va[1] * vb[1] + va[2] * vb[2]) > 0.985) continue;   /* tangent: no edge */

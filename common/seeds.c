@@ -390,6 +390,21 @@ static void edge_seeds(Build *B, const double x[3], const double n1[3], const do
     if (sgn > 0 && geometry_fluid(B->g, si) && fits_box(B, si, B->a / 2)) try_add(B, si, 1, -1, SEED_BOUNDARY, n);
 }
 
+/* Is nf the normal of a face of leaf just beside x: at x + eps d or at
+   x - eps d (towards the solid or the flow, whichever side the face is
+   on), is the nearest face's normal nf?  Tells the faces meeting at an
+   edge or corner point. */
+static int face_beside(const Build *B, int leaf, const double x[3], const double d[3], double eps, const double nf[3])
+{
+    for (int sg = -1; sg <= 1; sg += 2) {
+        double z[3], nz[3];
+        for (int k = 0; k < 3; k++) z[k] = x[k] + sg * eps * d[k];
+        geometry_normal(B->g, leaf, z, nz);
+        if (fabs(nz[0] - nf[0]) + fabs(nz[1] - nf[1]) + fabs(nz[2] - nf[2]) < 1e-6) return 1;
+    }
+    return 0;
+}
+
 /* Fig. 3.16 at an edge of a primitive: x is on two faces when the
    normal n1 of the nearest face (geometry_normal) and its mirror n2 in
    the mean normal n, n2 = 2 (n.n1) n - n1, is confirmed as the normal
@@ -406,14 +421,8 @@ static int convex_edge(Build *B, const double x[3], const double n[3], int leaf,
     /* n2 must be a face's normal there (else x is a corner of three or
        more faces): a point just beside the edge, off face 1 towards face
        2, has it as its nearest face's normal */
-    int face2 = 0;
-    for (int sg = -1; sg <= 1 && !face2; sg += 2) {
-        double z[3], nz[3];
-        for (int k = 0; k < 3; k++) z[k] = x[k] + sg * eps * (n2[k] - n1[k]);
-        geometry_normal(B->g, leaf, z, nz);
-        face2 = fabs(nz[0] - n2[0]) + fabs(nz[1] - n2[1]) + fabs(nz[2] - n2[2]) < 1e-6;
-    }
-    if (!face2) return 0;
+    double d[3] = {n2[0] - n1[0], n2[1] - n1[1], n2[2] - n1[2]};
+    if (!face_beside(B, leaf, x, d, eps, n2)) return 0;
     int surf = B->g->leaves[leaf].surface;
     edge_seeds(B, x, n1, n2, surf, surf, hs);
     return 1;
@@ -449,14 +458,9 @@ static int orthogonal_corner(Build *B, const double x[3], const double n[3], int
        face's normal */
     double eps = 1e-7 * hs;
     for (int f = 1; f < 3; f++) {
-        int ok = 0;
-        for (int sg = -1; sg <= 1 && !ok; sg += 2) {
-            double z[3], nz[3];
-            for (int k = 0; k < 3; k++) z[k] = x[k] + sg * eps * (nf[(f + 1) % 3][k] + nf[(f + 2) % 3][k]);
-            geometry_normal(B->g, leaf, z, nz);
-            ok = fabs(nz[0] - nf[f][0]) + fabs(nz[1] - nf[f][1]) + fabs(nz[2] - nf[f][2]) < 1e-6;
-        }
-        if (!ok) return 0;
+        double d[3];
+        for (int k = 0; k < 3; k++) d[k] = nf[(f + 1) % 3][k] + nf[(f + 2) % 3][k];
+        if (!face_beside(B, leaf, x, d, eps, nf[f])) return 0;
     }
     /* on the flow side of face 1 and the solid side of faces 2, 3: fluid
        only at a convex corner of the solid (flow around a box) */
