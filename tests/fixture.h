@@ -57,10 +57,20 @@ static inline void fixture_block(Mesh *m, const int n[3], const double lo[3], co
     for (int k = 0; k < 3; k++) free(x[k]);
 }
 
-/* A geometry from the body of geometryDict's surfaces entry, and the
-   dictionary it keeps pointers into. */
+/* A geometry from the whole text of a geometryDict ("surfaces { ... }");
+   returns -1 with the message in e on a bad text. */
+static inline int fixture_geometry(Geometry *g, const char *text, Err *e)
+{
+    geometry_init(g);
+    Dict *d = dict_parse(text, strlen(text), "geometryDict", e);
+    if (!d) return -1;
+    int rc = geometry_parse(g, d, "geometryDict", ".", e);
+    dict_free(d);
+    return rc;
+}
+
+/* A geometry from the body of geometryDict's surfaces entry. */
 typedef struct FixtureGeo {
-    Dict *d;
     Geometry g;
 } FixtureGeo;
 
@@ -72,25 +82,15 @@ static inline int fixture_geo(FixtureGeo *G, const char *text)
     char *buf = mem_alloc(n);
     snprintf(buf, n, "surfaces\n{\n%s\n}\n", text);
     Err e;
-    geometry_init(&G->g);
-    G->d = dict_parse(buf, strlen(buf), "geometryDict", &e);
+    int rc = fixture_geometry(&G->g, buf, &e);
     free(buf);
-    if (!G->d) {
-        printf("dict_parse: %s\n", e.msg);
-        return -1;
-    }
-    if (geometry_parse(&G->g, G->d, "geometryDict", ".", &e)) {
-        printf("geometry_parse: %s\n", e.msg);
-        dict_free(G->d);
-        return -1;
-    }
-    return 0;
+    if (rc) printf("geometry: %s\n", e.msg);
+    return rc;
 }
 
 static inline void fixture_geo_free(FixtureGeo *G)
 {
     geometry_free(&G->g);
-    dict_free(G->d);
 }
 
 #endif

@@ -8,6 +8,7 @@
 #include "mem.h"
 #include "stl.h"
 #include "test.h"
+#include "fixture.h"
 #include "trisurf.h"
 
 #include <gsl/gsl_rng.h>
@@ -19,14 +20,6 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-static int parse(Geometry *g, const char *text, Err *e)
-{
-    Dict *d = dict_parse(text, strlen(text), "geometryDict", e);
-    if (!d) return -1;
-    int rc = geometry_parse(g, d, "geometryDict", ".", e);
-    dict_free(d);
-    return rc;
-}
 
 static void lerp(const double a[3], const double b[3], double t, double x[3])
 {
@@ -37,7 +30,7 @@ TEST(sphere_outside)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, "surfaces { ball { shape sphere; centre (0.5 0.5 0.5); radius 0.25; } }", &e) == 0, "%s",
+    EXPECT(fixture_geometry(&g, "surfaces { ball { shape sphere; centre (0.5 0.5 0.5); radius 0.25; } }", &e) == 0, "%s",
            e.msg);
     double c[3] = {0.5, 0.5, 0.5}, far[3] = {0.05, 0.1, 0.9};
     EXPECT(!geometry_fluid(&g, c) && geometry_fluid(&g, far), "sphere: centre must be solid, corner fluid");
@@ -81,7 +74,7 @@ TEST(csg_crossings_random)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, csg_text, &e) == 0, "%s", e.msg);
+    EXPECT(fixture_geometry(&g, csg_text, &e) == 0, "%s", e.msg);
     if (g.nsurf != 2) return;
     EXPECT(g.nleaves == 5, "%d leaves, expected 5", g.nleaves);
     gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
@@ -131,7 +124,7 @@ TEST(classify_line_matches_points)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, csg_text, &e) == 0, "%s", e.msg);
+    EXPECT(fixture_geometry(&g, csg_text, &e) == 0, "%s", e.msg);
     double c[101];
     char f[101];
     for (int i = 0; i <= 100; i++) c[i] = i / 100.0;
@@ -155,7 +148,7 @@ TEST(transform_rotate_translate)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, "surfaces { b { flow inside; shape box; min (-1 -0.5 -0.5); max (1 0.5 0.5);\n"
+    EXPECT(fixture_geometry(&g, "surfaces { b { flow inside; shape box; min (-1 -0.5 -0.5); max (1 0.5 0.5);\n"
                      " rotate { axis (0 0 1); angle 30; } translate (2 3 0); } }", &e) == 0, "%s", e.msg);
     double c = cos(M_PI / 6), s = sin(M_PI / 6);
     /* local (0.9, 0.4, 0) -> global */
@@ -185,7 +178,7 @@ TEST(difference_normal_sign)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, "surfaces { p { flow inside; shape difference;\n"
+    EXPECT(fixture_geometry(&g, "surfaces { p { flow inside; shape difference;\n"
                      " o { shape sphere; centre (0 0 0); radius 1; }\n"
                      " i { shape sphere; centre (0 0 0); radius 0.5; } } }", &e) == 0, "%s", e.msg);
     double a[3] = {0, 0, 0}, b[3] = {2, 0, 0};
@@ -212,7 +205,7 @@ TEST(flatten_section)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, "surfaces { ball { shape sphere; centre (0.5 0.5 0.5); radius 0.25; } }", &e) == 0, "%s",
+    EXPECT(fixture_geometry(&g, "surfaces { ball { shape sphere; centre (0.5 0.5 0.5); radius 0.25; } }", &e) == 0, "%s",
            e.msg);
     geometry_flatten(&g, 2, 0.5);
     double p[3] = {0.5, 0.7, 0.99}, q[3] = {0.5, 0.76, 0.5};
@@ -263,7 +256,7 @@ TEST(stl_leaf)
     EXPECT(stl_write(&s, "geo_stl/cube.stl", 1, &e) == 0, "%s", e.msg);
     trisurf_free(&s);
     Geometry g;
-    EXPECT(parse(&g, "surfaces { cube { flow outside; shape stl; file \"geo_stl/cube.stl\"; scale 0.5;\n"
+    EXPECT(fixture_geometry(&g, "surfaces { cube { flow outside; shape stl; file \"geo_stl/cube.stl\"; scale 0.5;\n"
                      " translate (0.25 0.25 0.25); } }", &e) == 0, "%s", e.msg);
     if (g.nsurf != 1) return;
     double c[3] = {0.5, 0.5, 0.5}, o[3] = {0.1, 0.5, 0.5};
@@ -291,11 +284,11 @@ TEST(stl_leaf)
     trisurf_from_soup(&s, xyz, 11, NULL);
     EXPECT(stl_write(&s, "geo_stl/open.stl", 0, &e) == 0, "%s", e.msg);
     trisurf_free(&s);
-    EXPECT(parse(&g, "surfaces { c { shape stl; file \"geo_stl/open.stl\"; } }", &e) != 0, "open STL accepted");
+    EXPECT(fixture_geometry(&g, "surfaces { c { shape stl; file \"geo_stl/open.stl\"; } }", &e) != 0, "open STL accepted");
     CONTAINS(e.msg, "not watertight");
     CONTAINS(e.msg, "3 open edge");
     CONTAINS(e.msg, "geometryDict:1:");
-    EXPECT(parse(&g, "surfaces { c { shape stl; file \"geo_stl/open.stl\"; allowOpen yes; } }", &e) == 0,
+    EXPECT(fixture_geometry(&g, "surfaces { c { shape stl; file \"geo_stl/open.stl\"; allowOpen yes; } }", &e) == 0,
            "allowOpen yes: %s", e.msg);
     geometry_free(&g);
     io_rm_rf("geo_stl", NULL);
@@ -305,23 +298,23 @@ TEST(dictionary_errors)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, "surfaces { s { shape sphre; centre (0 0 0); radius 1; } }", &e) != 0, "bad shape accepted");
+    EXPECT(fixture_geometry(&g, "surfaces { s { shape sphre; centre (0 0 0); radius 1; } }", &e) != 0, "bad shape accepted");
     CONTAINS(e.msg, "unknown shape 'sphre'");
-    EXPECT(parse(&g, "surfaces {\n s { shape sphere; centre (0 0 0); raduis 1; } }", &e) != 0, "typo accepted");
+    EXPECT(fixture_geometry(&g, "surfaces {\n s { shape sphere; centre (0 0 0); raduis 1; } }", &e) != 0, "typo accepted");
     CONTAINS(e.msg, "geometryDict:2:");
     CONTAINS(e.msg, "did you mean 'radius'");
-    EXPECT(parse(&g, "surfaces {\n\n s { shape sphere; centre (0 0 0); radius -1; } }", &e) != 0, "r < 0 accepted");
+    EXPECT(fixture_geometry(&g, "surfaces {\n\n s { shape sphere; centre (0 0 0); radius -1; } }", &e) != 0, "r < 0 accepted");
     CONTAINS(e.msg, "geometryDict:3:");
-    EXPECT(parse(&g, "surfaces { }", &e) != 0, "no surfaces accepted");
+    EXPECT(fixture_geometry(&g, "surfaces { }", &e) != 0, "no surfaces accepted");
     CONTAINS(e.msg, "no surfaces");
-    EXPECT(parse(&g, "surfaces { u { shape union; } }", &e) != 0, "empty union accepted");
+    EXPECT(fixture_geometry(&g, "surfaces { u { shape union; } }", &e) != 0, "empty union accepted");
     CONTAINS(e.msg, "operands");
-    EXPECT(parse(&g, "surfaces { s { shape stl; file \"nowhere.stl\"; } }", &e) != 0, "missing file accepted");
+    EXPECT(fixture_geometry(&g, "surfaces { s { shape stl; file \"nowhere.stl\"; } }", &e) != 0, "missing file accepted");
     CONTAINS(e.msg, "nowhere.stl");
-    EXPECT(parse(&g, "surfaces { s { shape sphere; flow sideways; centre (0 0 0); radius 1; } }", &e) != 0,
+    EXPECT(fixture_geometry(&g, "surfaces { s { shape sphere; flow sideways; centre (0 0 0); radius 1; } }", &e) != 0,
            "bad flow accepted");
     CONTAINS(e.msg, "flow");
-    EXPECT(parse(&g, "surfaces { s { shape box; min (0 0 0); max (1 1 1); scale 0; } }", &e) != 0,
+    EXPECT(fixture_geometry(&g, "surfaces { s { shape box; min (0 0 0); max (1 1 1); scale 0; } }", &e) != 0,
            "scale 0 accepted");
     CONTAINS(e.msg, "scale");
 }

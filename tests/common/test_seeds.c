@@ -20,14 +20,6 @@
 
 static const double PI_ = 3.14159265358979323846;
 
-static int parse(Geometry *g, const char *text, Err *e)
-{
-    Dict *d = dict_parse(text, strlen(text), "geometryDict", e);
-    if (!d) return -1;
-    int rc = geometry_parse(g, d, "geometryDict", ".", e);
-    dict_free(d);
-    return rc;
-}
 
 static void grid(Mesh *m, const double lo[3], const double hi[3], const int n[3], int flat)
 {
@@ -67,7 +59,7 @@ TEST(seeds_without_surfaces)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, "surfaces { far { shape sphere; centre (3 3 3); radius 0.5; } }", &e) == 0, "%s", e.msg);
+    EXPECT(fixture_geometry(&g, "surfaces { far { shape sphere; centre (3 3 3); radius 0.5; } }", &e) == 0, "%s", e.msg);
     Mesh m;
     double lo[3] = {0, 0, 0}, hi[3] = {1, 0.6, 0.4};
     int n[3] = {10, 6, 4};
@@ -96,7 +88,7 @@ TEST(seeds_plane_layers)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, "surfaces { top { flow inside; shape halfSpace; point (0 0 0.43); normal (0 0 1); } }", &e) == 0,
+    EXPECT(fixture_geometry(&g, "surfaces { top { flow inside; shape halfSpace; point (0 0 0.43); normal (0 0 1); } }", &e) == 0,
            "%s", e.msg);
     Mesh m;
     double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1}, h = 0.1;
@@ -153,7 +145,7 @@ TEST(seeds_csg_part)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, "surfaces { part { flow inside; shape difference;\n"
+    EXPECT(fixture_geometry(&g, "surfaces { part { flow inside; shape difference;\n"
                      "  body { shape box; min (0.1 0.1 0.1); max (0.9 0.7 0.5); }\n"
                      "  hole { shape cylinder; point1 (0.4 0.4 0); point2 (0.4 0.4 0.6); radius 0.15; }\n"
                      "} }\n", &e) == 0, "%s", e.msg);
@@ -209,7 +201,7 @@ TEST(seeds_2d_disc)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, "surfaces { disc { shape cylinder; point1 (0.5 0.5 -1); point2 (0.5 0.5 1); radius 0.2; } }",
+    EXPECT(fixture_geometry(&g, "surfaces { disc { shape cylinder; point1 (0.5 0.5 -1); point2 (0.5 0.5 1); radius 0.2; } }",
                  &e) == 0, "%s", e.msg);
     Mesh m;
     double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 0.1}, h = 0.05;
@@ -282,7 +274,7 @@ TEST(seeds_box_edges)
     for (int c = 0; c < 2; c++) {
         Geometry g;
         Err e;
-        EXPECT(parse(&g, text[c], &e) == 0, "%s", e.msg);
+        EXPECT(fixture_geometry(&g, text[c], &e) == 0, "%s", e.msg);
         Mesh m;
         double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
         int n[3] = {10, 10, 10};
@@ -305,7 +297,7 @@ TEST(seeds_errors)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, "surfaces { ball { shape sphere; centre (0.5 0.5 0.5); radius 0.2; } }", &e) == 0, "%s", e.msg);
+    EXPECT(fixture_geometry(&g, "surfaces { ball { shape sphere; centre (0.5 0.5 0.5); radius 0.2; } }", &e) == 0, "%s", e.msg);
     Mesh m;
     double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
     int n[3] = {4, 4, 4};
@@ -327,7 +319,7 @@ TEST(seeds_errors)
     CONTAINS(e.msg, "no Cartesian extras");
     geometry_free(&g);
     /* flow inside a ball that misses the grid */
-    EXPECT(parse(&g, "surfaces { ball { flow inside; shape sphere; centre (5 5 5); radius 0.2; } }", &e) == 0, "%s",
+    EXPECT(fixture_geometry(&g, "surfaces { ball { flow inside; shape sphere; centre (5 5 5); radius 0.2; } }", &e) == 0, "%s",
            e.msg);
     EXPECT(seeds_make(&m, &g, &o, &s, &e) == -1, "empty flow domain accepted");
     CONTAINS(e.msg, "geometryDict: seeds: no cell centre");

@@ -14,6 +14,7 @@
 ** points inside the hole; 2-D sections give perimeter / h points.
 */
 #include "test.h"
+#include "fixture.h"
 
 #include "geometry.h"
 #include "mem.h"
@@ -345,14 +346,6 @@ TEST(sample_unbounded)
 
 /* ---- geometry_sample ---- */
 
-static int parse(Geometry *g, const char *text, Err *e)
-{
-    Dict *d = dict_parse(text, strlen(text), "geometryDict", e);
-    if (!d) return -1;
-    int rc = geometry_parse(g, d, "geometryDict", ".", e);
-    dict_free(d);
-    return rc;
-}
 
 /* Every point: fluid just behind it, solid just ahead along n. */
 static int count_off_boundary(const Geometry *g, const double *x, const double *n, int np, double d)
@@ -376,7 +369,7 @@ TEST(geometry_sample_csg)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, part_text, &e) == 0, "%s", e.msg);
+    EXPECT(fixture_geometry(&g, part_text, &e) == 0, "%s", e.msg);
     double h = 0.05, *x, *n;
     int *leaf;
     int np = geometry_sample(&g, h, &x, &n, &leaf);
@@ -410,7 +403,7 @@ TEST(geometry_sample_2d)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, "surfaces { ball { shape sphere; centre (0.5 0.5 0.2); radius 0.3; } }", &e) == 0, "%s", e.msg);
+    EXPECT(fixture_geometry(&g, "surfaces { ball { shape sphere; centre (0.5 0.5 0.2); radius 0.3; } }", &e) == 0, "%s", e.msg);
     geometry_flatten(&g, 2, 0.2);
     double h = 0.02, *x, *n;
     int *leaf;
@@ -426,7 +419,7 @@ TEST(geometry_sample_2d)
     free(x), free(n), free(leaf);
     geometry_free(&g);
     /* a torus has no closed-form section here: grid-line marching */
-    EXPECT(parse(&g, "surfaces { ring { flow inside; shape torus; centre (0.5 0.5 0); axis (1 0 0); "
+    EXPECT(fixture_geometry(&g, "surfaces { ring { flow inside; shape torus; centre (0.5 0.5 0); axis (1 0 0); "
                      "majorRadius 0.3; minorRadius 0.1; } }", &e) == 0, "%s", e.msg);
     geometry_flatten(&g, 2, 0);
     np = geometry_sample(&g, h, &x, &n, &leaf);
@@ -450,7 +443,7 @@ TEST(geometry_sample_2d_rectangle)
 {
     Geometry g;
     Err e;
-    EXPECT(parse(&g, "surfaces { slab { flow inside; shape box; min (0.2 0.2 -1); max (0.6 0.5 1);"
+    EXPECT(fixture_geometry(&g, "surfaces { slab { flow inside; shape box; min (0.2 0.2 -1); max (0.6 0.5 1);"
                      " rotate { axis (0 0 1); angle 30; origin (0.4 0.35 0); } } }", &e) == 0, "%s", e.msg);
     geometry_flatten(&g, 2, 0.25);
     double h = 0.05, *x, *n;

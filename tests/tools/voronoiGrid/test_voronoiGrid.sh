@@ -202,27 +202,7 @@ fi
 # ---- VTK reader -----------------------------------------------------------------------------
 if "$BIN/writeVTK" -case sphere >sphere/log.writeVTK 2>&1; then
     f=$(ls sphere/VTK/*.vtk 2>/dev/null | head -1)
-    out=$(/usr/bin/python3 - "$f" "$(fluid sphere/log.voronoiGrid)" <<'EOF' 2>&1
-import sys
-import vtk
-r = vtk.vtkUnstructuredGridReader()
-r.SetFileName(sys.argv[1])
-r.Update()
-g = r.GetOutput()
-n = g.GetNumberOfCells()
-vol = 0.0
-for i in range(n):
-    c = g.GetCell(i)
-    for k in range(c.GetNumberOfFaces()):
-        pts = c.GetFace(k).GetPoints()
-        x = [pts.GetPoint(j) for j in range(pts.GetNumberOfPoints())]
-        for j in range(len(x)):
-            a, b = x[j], x[(j + 1) % len(x)]
-            s = (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-            vol += sum(x[0][d] * s[d] for d in range(3)) / 6.0
-print(n, vol, abs(vol - float(sys.argv[2])))
-EOF
-)
+    out=$(/usr/bin/python3 "$TOP/tests/vtk_cells_volume.py" "$f" "$(fluid sphere/log.voronoiGrid)" 2>&1)
     read -r n vol d <<<"$out"
     nc=$(ncells sphere/log.voronoiGrid)
     if [ "$n" = "$nc" ] && le "$d" 1e-9; then
