@@ -29,8 +29,7 @@ static int face_side(const Mesh *m, int f, const double lo[3], const double hi[3
     return -1;
 }
 
-/* side_patch[s]: the grid's patch holding box side s; every boundary
-   face of the block grid must be on a side, one patch per side. */
+/* Distance within which a point is on a box side. */
 static double side_tol(const double lo[3], const double hi[3])
 {
     double tol = 0;
@@ -38,6 +37,8 @@ static double side_tol(const double lo[3], const double hi[3])
     return tol;
 }
 
+/* side_patch[s]: the grid's patch holding box side s; every boundary
+   face of the block grid must be on a side, one patch per side. */
 static int side_patches(const Mesh *grid, const double lo[3], const double hi[3], int side_patch[6], Err *e)
 {
     double tol = side_tol(lo, hi);
@@ -193,6 +194,25 @@ static void count_seeds(const Seeds *s, VGridStats *st)
     }
 }
 
+static void fill_stats(VGridStats *st, const VoronoiStats *vs, const Mesh *out, const Geometry *g,
+                       const SeedOpts *o, const CartGrid *cg, int flat, int nbox)
+{
+    double h = INFINITY;
+    for (int a = 0; a < 3; a++)
+        if (a != flat) h = fmin(h, (cg->x[a][cg->n[a]] - cg->x[a][0]) / cg->n[a]);
+    st->h = h;
+    st->a = o->min_spacing * h;
+    st->vol_bound = flat >= 0 ? PI_ * st->a * st->a / 4 * (cg->x[flat][cg->n[flat]] - cg->x[flat][0])
+                              : PI_ * pow(st->a, 3) / 6;
+    st->ncells = out->ncells;
+    st->vol_min = vs->vol_min;
+    st->vol_total = vs->vol_total;
+    for (int p = nbox; p < out->npatches; p++) st->nsurface_faces += out->patches[p].size;
+    st->ortho_max = vs->ortho_max;
+    st->nfaces_dropped = vs->nfaces_dropped;
+    for (int l = 0; l < g->nleaves; l++) st->nstl += geometry_leaf_kind(g, l) == GEO_LEAF_STL;
+}
+
 int vgrid_mesh(const Mesh *grid0, const Geometry *g0, const SeedOpts *o, Mesh *out, VGridStats *st, Err *e)
 {
     mesh_init(out);
@@ -220,7 +240,6 @@ int vgrid_mesh(const Mesh *grid0, const Geometry *g0, const SeedOpts *o, Mesh *o
     }
     int side_patch[6];
     if (check_names(grid0, &g, e) || side_patches(grid0, lo, hi, side_patch, e)) return -1;
-    int rc;
 
     Seeds s;
     if (seeds_make(grid0, &g, o, &s, e)) return -1;
@@ -239,24 +258,12 @@ int vgrid_mesh(const Mesh *grid0, const Geometry *g0, const SeedOpts *o, Mesh *o
     memcpy(in.side_patch, side_patch, sizeof side_patch);
     int *seed_of = mem_alloc(sizeof(int) * (size_t)(s.n > 0 ? s.n : 1));
     VoronoiStats vs;
-    rc = voronoi_mesh(&in, out, seed_of, &vs, e);
+    int rc = voronoi_mesh(&in, out, seed_of, &vs, e);
     if (!rc) {
         out->cell_seed = mem_alloc(sizeof(double) * 3 * (size_t)out->ncells);
         for (int c = 0; c < out->ncells; c++) memcpy(out->cell_seed + 3 * c, s.x + 3 * seed_of[c], 3 * sizeof(double));
         boundary_normals(out, &g, nbox, side_patch, lo, hi);
-        double h = INFINITY;
-        for (int a = 0; a < 3; a++)
-            if (a != flat) h = fmin(h, (hi[a] - lo[a]) / cg->n[a]);
-        st->h = h;
-        st->a = o->min_spacing * h;
-        st->vol_bound = flat >= 0 ? PI_ * st->a * st->a / 4 * (hi[flat] - lo[flat]) : PI_ * pow(st->a, 3) / 6;
-        st->ncells = out->ncells;
-        st->vol_min = vs.vol_min;
-        st->vol_total = vs.vol_total;
-        for (int p = nbox; p < out->npatches; p++) st->nsurface_faces += out->patches[p].size;
-        st->ortho_max = vs.ortho_max;
-        st->nfaces_dropped = vs.nfaces_dropped;
-        for (int l = 0; l < g.nleaves; l++) st->nstl += geometry_leaf_kind(&g, l) == GEO_LEAF_STL;
+        fill_stats(st, &vs, out, &g, o, cg, flat, nbox);
     }
     free(seed_of);
     free(patch);
