@@ -14,7 +14,7 @@
 ** (including line breaks) between tokens, as real exporters write it:
 **     solid [name...]            name: the rest of the line, trimmed (up
 **                                to a keyword of the facet grammar)
-**       facet [normal nx ny nz]  the normal is skipped (may be "nan")
+**       facet [normal nx ny nz]  three numbers (may be nan or inf), skipped
 **         outer loop
 **           vertex x y z         three times
 **         endloop
@@ -24,6 +24,13 @@
 ** the same name share one (OpenFOAM regions), an unnamed one is called
 ** "solid<i>" after its position.  A file that ends inside a solid is an
 ** error (a truncated file would otherwise lose triangles silently).
+**
+** Strictness.  Numbers are decimal only (soup.h): "0x1p3", "1.0.0" or
+** "1,5" are errors, and so is any other token where a number belongs
+** ("facet normal 0 0 x"; "facet normal 1 2" followed by "outer");
+** coordinates must be finite.  Since the grammar is a fixed sequence of
+** tokens, anything extra ("vertex 1 2 3 4", "outer loop x", a fourth
+** normal component) is reported where the next keyword was expected.
 **
 ** Writing assembles the file in a Buf: binary corners are rounded to
 ** float32 (the format's precision) with a unit normal; ascii writes
@@ -43,68 +50,7 @@
 #include "buf.h"
 #include "io.h"
 #include "mem.h"
-
-/* ---------------------------------------------------------------- soup */
-
-typedef struct Soup {
-    double *xyz;
-    int *tag;
-    size_t n, cap;     /* triangles */
-    char **names;
-    int nnames;
-    size_t names_cap;
-} Soup;
-
-static void soup_free(Soup *S)
-{
-    free(S->xyz);
-    free(S->tag);
-    for (int i = 0; i < S->nnames; i++) free(S->names[i]);
-    free(S->names);
-    memset(S, 0, sizeof *S);
-}
-
-static void soup_push(Soup *S, const double c[9], int tag)
-{
-    if (S->n == S->cap) {
-        S->cap = S->cap ? 2 * S->cap : 1024;
-        S->xyz = mem_realloc(S->xyz, S->cap * 9 * sizeof *S->xyz);
-        S->tag = mem_realloc(S->tag, S->cap * sizeof *S->tag);
-    }
-    memcpy(S->xyz + 9 * S->n, c, 9 * sizeof *c);
-    S->tag[S->n++] = tag;
-}
-
-static int soup_tag(Soup *S, const char *name)
-{
-    for (int i = 0; i < S->nnames; i++)
-        if (strcmp(S->names[i], name) == 0) return i;
-    mem_grow((void **)&S->names, &S->names_cap, (size_t)S->nnames + 1, sizeof *S->names);
-    S->names[S->nnames] = mem_strdup(name);
-    return S->nnames++;
-}
-
-/* Moves the soup into s (welded); s is empty on failure. */
-static int soup_finish(Soup *S, TriSurf *s, int tagged, const char *name, Err *e)
-{
-    if (S->n == 0) {
-        soup_free(S);
-        return err_set(e, name, 0, "no triangles in STL file");
-    }
-    if (S->n > INT32_MAX / 3) {
-        soup_free(S);
-        return err_set(e, name, 0, "too many triangles (%zu)", S->n);
-    }
-    trisurf_from_soup(s, S->xyz, (int)S->n, tagged ? S->tag : NULL);
-    if (tagged) {
-        s->names = S->names;
-        s->nnames = S->nnames;
-        S->names = NULL;
-        S->nnames = 0;
-    }
-    soup_free(S);
-    return 0;
-}
+#include "soup.h"
 
 /* ---------------------------------------------------------------- binary */
 
@@ -136,7 +82,7 @@ static int parse_binary(TriSurf *s, const unsigned char *d, uint32_t n, const ch
         }
         soup_push(&S, c, 0);
     }
-    return soup_finish(&S, s, 0, name, e);
+    return soup_finish(&S, s, 0, name, "no triangles in STL file", e);
 }
 
 /* ---------------------------------------------------------------- ascii */
@@ -212,37 +158,37 @@ static int expect(Lex *L, const char *kw, Err *e)
     return 0;
 }
 
-static int number(Lex *L, double *x, Err *e)
+/* The next token as a number; what names the number in messages.  A
+   coordinate must be finite (finite != 0); a facet normal may be nan or
+   inf, which exporters write for degenerate facets, since it is skipped. */
+static int number(Lex *L, double *x, int finite, const char *what, Err *e)
 {
-    char b[64];
-    if (!lex_next(L)) return err_set(e, L->name, L->tok_line, "unexpected end of file, expected a coordinate");
-    if (L->len >= sizeof b) return err_set(e, L->name, L->tok_line, "bad number '%s'", tok_show(L, b));
-    memcpy(b, L->tok, L->len);
-    b[L->len] = '\0';
-    char *end;
-    *x = strtod(b, &end);
-    if (*end || end == b) return err_set(e, L->name, L->tok_line, "bad number '%s'", tok_show(L, b));
-    if (!isfinite(*x)) return err_set(e, L->name, L->tok_line, "non-finite coordinate '%s'", b);
+    char b[48];
+    if (!lex_next(L)) return err_set(e, L->name, L->tok_line, "unexpected end of file, expected %s", what);
+    int rc = soup_number(L->tok, L->len, x);
+    if (rc < 0) return err_set(e, L->name, L->tok_line, "bad number '%s', expected %s", tok_show(L, b), what);
+    if (rc == 0 && finite)
+        return err_set(e, L->name, L->tok_line, "non-finite coordinate '%s'", tok_show(L, b));
     return 0;
 }
 
 static int parse_facet(Lex *L, Soup *S, int tag, Err *e)
 {
-    double c[9];
+    double c[9], nv;
+    char b[48];
     if (!lex_next(L)) return err_set(e, L->name, L->tok_line, "unexpected end of file in facet");
     if (tok_is(L, "normal")) {
-        for (int k = 0; k < 3; k++)   /* not checked: exporters write nan */
-            if (!lex_next(L)) return err_set(e, L->name, L->tok_line, "unexpected end of file in facet normal");
+        for (int k = 0; k < 3; k++)
+            if (number(L, &nv, 0, "a component of the facet normal (three numbers)", e)) return -1;
         if (!lex_next(L)) return err_set(e, L->name, L->tok_line, "unexpected end of file, expected 'outer'");
     }
-    char b[48];
     if (!tok_is(L, "outer"))
         return err_set(e, L->name, L->tok_line, "expected 'outer', found '%s'", tok_show(L, b));
     if (expect(L, "loop", e)) return -1;
     for (int v = 0; v < 3; v++) {
         if (expect(L, "vertex", e)) return -1;
         for (int k = 0; k < 3; k++)
-            if (number(L, &c[3 * v + k], e)) return -1;
+            if (number(L, &c[3 * v + k], 1, "a coordinate", e)) return -1;
     }
     if (expect(L, "endloop", e) || expect(L, "endfacet", e)) return -1;
     soup_push(S, c, tag);
@@ -332,7 +278,7 @@ static int parse_ascii(TriSurf *s, const char *d, size_t n, const char *name, Er
             return -1;
         }
     }
-    return soup_finish(&S, s, 1, name, e);
+    return soup_finish(&S, s, 1, name, "no triangles in STL file", e);
 }
 
 /* ---------------------------------------------------------------- read */

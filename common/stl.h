@@ -7,8 +7,10 @@
 ** `file.gz` when `file` is absent, and welds bit-identical corners into
 ** shared points (trisurf_from_soup).  Every ascii `solid <name>` block
 ** becomes a tag with that name (OpenFOAM calls them regions).  Errors name
-** the file and, for ascii, the line.  Facet normals in the file are
-** ignored: the orientation comes from the corner order.
+** the file and, for ascii, the line.  Facet normals must be three
+** numbers (nan allowed) but are otherwise ignored: the orientation comes
+** from the corner order.  OBJ files and the choice between the two
+** formats: obj.h, surface.h.
 */
 #ifndef KIESEL_STL_H
 #define KIESEL_STL_H

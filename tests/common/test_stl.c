@@ -284,6 +284,54 @@ TEST(malformed)
     EXPECT(fails_with(many, sizeof many - 1, "bad.stl:2: expected 'endloop', found 'vertex'"), "four vertices");
 }
 
+/* Issue 9 item 8: the facet normal was skipped as any three tokens, so
+   garbage there was accepted or reported as a confusing missing 'outer';
+   every number of the ascii grammar is now strictly decimal. */
+static char *facet_with(char *buf, size_t n, const char *normal, const char *v2)
+{
+    snprintf(buf, n, "solid a\nfacet %s\nouter loop\nvertex 0 0 0\nvertex %s\nvertex 0 1 0\n"
+             "endloop\nendfacet\nendsolid a\n", normal, v2);
+    return buf;
+}
+
+TEST(strict_numbers)
+{
+    char t[512];
+    struct {
+        const char *normal, *v2, *want;
+    } bad[] = {
+        {"normal 0 0 x", "1 0 0", "bad.stl:2: bad number 'x', expected a component of the facet normal"},
+        {"normal 1 2", "1 0 0", "bad.stl:3: bad number 'outer', expected a component of the facet normal"},
+        {"normal 0 0 1 junk", "1 0 0", "bad.stl:2: expected 'outer', found 'junk'"},
+        {"normal 0 0 1 0", "1 0 0", "bad.stl:2: expected 'outer', found '0'"},
+        {"normal 0 0 1e", "1 0 0", "bad.stl:2: bad number '1e'"},
+        {"normal 0 0 0x1", "1 0 0", "bad.stl:2: bad number '0x1'"},
+        {"normal 0 0 1", "0x1p0 0 0", "bad.stl:5: bad number '0x1p0', expected a coordinate"},
+        {"normal 0 0 1", "1,0 0 0", "bad.stl:5: bad number '1,0'"},
+        {"normal 0 0 1", "1 0 0 0", "bad.stl:5: expected 'vertex', found '0'"},
+        {"normal 0 0 1", "1 0", "bad.stl:6: bad number 'vertex', expected a coordinate"},
+        {"normal 0 0 1", "nan 0 0", "bad.stl:5: non-finite coordinate 'nan'"},
+        {"normal 0 0 1", "1 -inf 0", "bad.stl:5: non-finite coordinate '-inf'"},
+        {"normal 0 0 1", "1 0 1e999", "bad.stl:5: non-finite coordinate '1e999'"},
+        {"normal 0 0 1", "1 0 infinity", "bad.stl:5: non-finite coordinate 'infinity'"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        facet_with(t, sizeof t, bad[i].normal, bad[i].v2);
+        EXPECT(fails_with(t, strlen(t), bad[i].want), "case %zu: %s / %s", i, bad[i].normal, bad[i].v2);
+    }
+    /* what exporters really write is still read: non-finite normals
+       (glibc's -nan, old MSVC's -1.#IND00), signs, "5." and ".5" */
+    static const char *const good[] = {"normal nan nan nan", "normal -nan NaN INF", "normal -1.#IND00 1.#QNAN0 1.#INF",
+                                       "normal -1.#IND00e+000 0 0", "normal +0 -0. .5", "normal 1E-3 -2e+2 3.e1", ""};
+    for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
+        TriSurf s;
+        Err e = {0};
+        facet_with(t, sizeof t, good[i], "1. +0 -.0e0");
+        EXPECT(stl_parse(&s, t, strlen(t), "good.stl", &e) == 0 && s.ntris == 1, "'%s': %s", good[i], e.msg);
+        trisurf_free(&s);
+    }
+}
+
 TEST(malformed_binary)
 {
     TriSurf s;
@@ -385,6 +433,7 @@ int main(void)
     RUN(ascii_multi_solid);
     RUN(binary_header_solid);
     RUN(malformed);
+    RUN(strict_numbers);
     RUN(malformed_binary);
     RUN(write_errors);
     RUN(truncations_and_mutations);
