@@ -7,6 +7,7 @@
 #include "io.h"
 #include "mem.h"
 
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
@@ -104,6 +105,26 @@ void args_parse(int argc, char **argv, const ToolInfo *t, Args *a)
         fprintf(stderr, "%s: case directory '%s' does not exist\n", t->name, a->case_dir);
         exit(1);
     }
+    /* a file that outgrows ulimit -f must fail with EFBIG (reported, old
+       file kept), not kill the tool with SIGXFSZ halfway through */
+    signal(SIGXFSZ, SIG_IGN);
+    char *mesh = args_case_path(a, "constant/polyMesh");
+    args_recover(t, mesh);
+    free(mesh);
+}
+
+void args_recover(const ToolInfo *t, const char *dir)
+{
+    if (!strcmp(dir, "-")) return;
+    Buf report;
+    buf_init(&report);
+    Err e;
+    int n = io_recover_dir(dir, &report, &e);
+    for (char *line = report.p, *nl; line && (nl = strchr(line, '\n')); line = nl + 1)
+        fprintf(stderr, "%s: recovery: %.*s\n", t->name, (int)(nl - line), line);
+    if (n < 0) fprintf(stderr, "%s: recovery failed: %s\n", t->name, e.msg);
+    fflush(stderr);
+    buf_free(&report);
 }
 
 void args_free(Args *a)

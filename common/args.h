@@ -10,6 +10,10 @@
 ** data to stdout ("-o -"), in which case args_info_stream() is stderr.
 ** The log format mirrors OpenFOAM's solvers: "Time = 0.5" blocks and
 ** "ExecutionTime = 0.05 s  ClockTime = 0 s", ending with "End".
+**
+** Start-up repairs what an interrupted run left in the case (a grid moved
+** aside, temporary directories of dead processes) before anything reads
+** it, and says so on stderr: the library (io_recover_dir) only reports.
 */
 #ifndef KIESEL_ARGS_H
 #define KIESEL_ARGS_H
@@ -54,8 +58,14 @@ typedef struct Args {
 } Args;
 
 /* Parses argv; handles -help and -version (prints and exits 0); exits 1
-   with a usage message on a bad option. */
+   with a usage message on a bad option.  Then ignores SIGXFSZ (an
+   over-size write fails with EFBIG instead) and recovers
+   <case>/constant/polyMesh (args_recover). */
 void args_parse(int argc, char **argv, const ToolInfo *t, Args *a);
+/* Runs io_recover_dir on dir ("-" is skipped) and prints each action on
+   stderr as "tool: recovery: path: what", so it lands in log.<tool>; a
+   failed recovery is reported there too and the tool goes on. */
+void args_recover(const ToolInfo *t, const char *dir);
 /* Frees what args_parse allocated. */
 void args_free(Args *a);
 /* Value of tool option name, or NULL. */

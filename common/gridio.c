@@ -1,5 +1,10 @@
 /*
 ** gridio.c: output side of the grid tools (gridio.h).
+**
+** A grid is written into <dir>.tmp<pid> and committed with io_commit_dir,
+** so an interrupted or failed write never leaves <dir> incomplete; the
+** grid tools recover their -i and -o directories at start-up
+** (args_recover) besides the <case>/constant/polyMesh args_parse does.
 */
 #include "gridio.h"
 
@@ -38,6 +43,9 @@ int gridio_args(Args *a, const ToolInfo *t, int out_is_in, GridIO *g, Err *e)
     g->in = in ? mem_strdup(in) : args_case_path(a, "constant/polyMesh");
     g->out = out ? mem_strdup(out) : out_is_in ? mem_strdup(g->in) : args_case_path(a, "constant/polyMesh");
     g->to_stdout = !strcmp(g->out, "-");
+    /* args_parse recovered <case>/constant/polyMesh; -i and -o may name others */
+    args_recover(t, g->in);
+    if (strcmp(g->out, g->in)) args_recover(t, g->out);
     if (g->to_stdout) args_info_to_stderr(a);
     args_banner(a, t);
     g->w.binary = g->w.gzip = 0;
@@ -57,9 +65,15 @@ void gridio_free(GridIO *g)
 int gridio_write(const Mesh *m, const char *dir, const MeshWriteOpts *w, Err *e)
 {
     if (!strcmp(dir, "-")) return mesh_write(m, "-", w, e);
-    size_t l = strlen(dir) + 32;
-    char *tmp = mem_alloc(l), *parent = mem_strdup(dir);
-    snprintf(tmp, l, "%s.tmp%ld", dir, (long)getpid());
+    /* "constant/polyMesh/" names the same directory; its temporary must
+       be a sibling ("constant/polyMesh.tmp<pid>"), not a child */
+    char *dst = mem_strdup(dir);
+    for (size_t k = strlen(dst); k > 1 && dst[k - 1] == '/'; k--) dst[k - 1] = '\0';
+    size_t l = strlen(dst) + 32;
+    char *tmp = mem_alloc(l), *parent = mem_strdup(dst);
+    /* the pid in the name lets io_recover_dir tell a dead run's leftovers
+       from a concurrent writer's work in progress */
+    snprintf(tmp, l, "%s.tmp%ld", dst, (long)getpid());
     char *slash = strrchr(parent, '/');
     int rc = 0;
     if (slash && slash != parent) {
@@ -68,10 +82,11 @@ int gridio_write(const Mesh *m, const char *dir, const MeshWriteOpts *w, Err *e)
     }
     io_rm_rf(tmp, NULL);
     if (!rc) rc = mesh_write(m, tmp, w, e);
-    if (!rc) rc = io_commit_dir(tmp, dir, e);
+    if (!rc) rc = io_commit_dir(tmp, dst, e);
     if (rc) io_rm_rf(tmp, NULL);
     free(tmp);
     free(parent);
+    free(dst);
     return rc;
 }
 

@@ -24,7 +24,8 @@ typedef struct GridIO {
 /* The options the grid tools share: -i, -o (default: the input when
    out_is_in, else <case>/constant/polyMesh), -binary and -gzip over
    writeFormat/writeCompression of system/controlDict.  With "-o -" the
-   banner and progress go to stderr; the banner is printed here. */
+   banner and progress go to stderr; the banner is printed here.  The -i
+   and -o directories are recovered first (args_recover). */
 int gridio_args(Args *a, const ToolInfo *t, int out_is_in, GridIO *g, Err *e);
 void gridio_free(GridIO *g);
 
@@ -32,9 +33,10 @@ void gridio_free(GridIO *g);
    when that file exists; w is left as it is otherwise. */
 int gridio_control_format(const char *case_dir, MeshWriteOpts *w, Err *e);
 
-/* Writes m to dir: "-" streams to stdout; otherwise the files go into a
-   sibling temporary directory that is then renamed over dir, so a failed
-   write leaves an existing grid untouched. */
+/* Writes m to dir: "-" streams to stdout; otherwise the files go into
+   the sibling dir.tmp<pid> that io_commit_dir then swaps with dir, so a
+   failed or killed write leaves an existing grid untouched, and two
+   concurrent writers each commit a complete grid (the last one stays). */
 int gridio_write(const Mesh *m, const char *dir, const MeshWriteOpts *w, Err *e);
 
 /* Bounding box, counts and patches, as blockMesh prints them. */

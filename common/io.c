@@ -11,18 +11,31 @@
 ** The gzip stream is the one io_gzip makes (same level, window and
 ** strategy, no flushes before the end), so files do not depend on how
 ** they were written.
+**
+** A directory (polyMesh) is replaced by io_commit_dir with an atomic
+** exchange, so the case has a complete tree under its name at every
+** instant; whatever a killed run leaves behind carries the run's pid in
+** its name (or is dst.old~), and io_recover_dir, which every tool runs at
+** start-up, removes it or puts it back.
 */
+/* syscall(2) and flock(2) are outside POSIX: glibc declares them under
+   _DEFAULT_SOURCE, which must come before the first system header. */
+#define _DEFAULT_SOURCE
+
 #include "io.h"
 #include "mem.h"
 
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/types.h>
 #include <unistd.h>
 #include <zlib.h>
@@ -435,30 +448,182 @@ int io_rm_rf(const char *path, Err *e)
     return 0;
 }
 
-int io_commit_dir(const char *tmpdir, const char *dst, Err *e)
+/* Linux's renameat2 flag that swaps two names in one step. */
+#define IO_RENAME_EXCHANGE (1 << 1)
+
+/* Swaps the directories a and b atomically: at every instant both names
+   hold a complete tree.  Fails with EINVAL or ENOSYS where the kernel or
+   the filesystem cannot (no renameat2, NFS, some FUSE). */
+static int exchange(const char *a, const char *b)
 {
-    if (!io_exists(dst)) {
-        if (rename(tmpdir, dst)) return err_set(e, dst, 0, "cannot rename directory: %s", strerror(errno));
-        return 0;
+#ifdef SYS_renameat2
+    return (int)syscall(SYS_renameat2, AT_FDCWD, a, AT_FDCWD, b, IO_RENAME_EXCHANGE);
+#else
+    (void)a;
+    (void)b;
+    errno = ENOSYS;
+    return -1;
+#endif
+}
+
+/* Takes an exclusive lock on the directory that holds path, so that
+   commits and recoveries of its entries by concurrent processes run one
+   at a time; the kernel drops it when the process dies.  Returns the fd
+   to pass to unlock_parent, or -1 where locking is not supported (the
+   commit then goes ahead unlocked: it is still safe against kills). */
+static int lock_parent(const char *path)
+{
+    char *dir = dir_of(path);
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    free(dir);
+    if (fd < 0) return -1;
+    while (flock(fd, LOCK_EX)) {
+        if (errno == EINTR) continue;
+        close(fd);
+        return -1;
     }
-    size_t l = strlen(dst) + 16;
+    return fd;
+}
+
+static void unlock_parent(int fd)
+{
+    if (fd >= 0) close(fd);
+}
+
+static char *aside_name(const char *dst)
+{
+    size_t l = strlen(dst) + 8;
     char *old = mem_alloc(l);
     snprintf(old, l, "%s.old~", dst);
-    io_rm_rf(old, NULL);
+    return old;
+}
+
+/* The replace for filesystems without an atomic exchange: dst moves to
+   dst.old~, tmpdir to dst, and dst.old~ to tmpdir (removed by the
+   caller).  A kill between the first two renames leaves dst.old~ without
+   dst, which io_recover_dir renames back. */
+static int replace_aside(const char *tmpdir, const char *dst, Err *e)
+{
+    char *old = aside_name(dst);
+    int rc = -1;
+    if (io_rm_rf(old, e)) goto done;
     if (rename(dst, old)) {
         err_set(e, dst, 0, "cannot move old directory aside: %s", strerror(errno));
-        free(old);
-        return -1;
+        goto done;
     }
     if (rename(tmpdir, dst)) {
         err_set(e, dst, 0, "cannot rename directory: %s", strerror(errno));
         rename(old, dst);
-        free(old);
-        return -1;
+        goto done;
     }
-    int rc = io_rm_rf(old, e);
+    rc = 0;
+    if (rename(old, tmpdir)) io_rm_rf(old, NULL);
+done:
     free(old);
     return rc;
+}
+
+/* Puts tmpdir at dst under the parent's lock.  Returns 0 when tmpdir is
+   gone, 1 when tmpdir now holds the old tree, -1 on failure. */
+static int commit_locked(const char *tmpdir, const char *dst, Err *e)
+{
+    /* rename over an absent or empty dst; ENOTEMPTY/EEXIST: a grid is there */
+    if (rename(tmpdir, dst) == 0) return 0;
+    if (errno != ENOTEMPTY && errno != EEXIST)
+        return err_set(e, dst, 0, "cannot rename directory: %s", strerror(errno));
+    if (exchange(tmpdir, dst) == 0) return 1;
+    if (errno != EINVAL && errno != ENOSYS)
+        return err_set(e, dst, 0, "cannot exchange directories: %s", strerror(errno));
+    return replace_aside(tmpdir, dst, e) ? -1 : 1;
+}
+
+int io_commit_dir(const char *tmpdir, const char *dst, Err *e)
+{
+    int fd = lock_parent(dst);
+    int rc = commit_locked(tmpdir, dst, e);
+    unlock_parent(fd);
+    /* outside the lock: the old tree is under our own temporary name */
+    if (rc == 1) io_rm_rf(tmpdir, NULL);
+    return rc < 0 ? -1 : 0;
+}
+
+/* The pid in name when name is base ".tmp" digits, else 0. */
+static long tmp_pid(const char *name, const char *base)
+{
+    size_t l = strlen(base);
+    if (strncmp(name, base, l) || strncmp(name + l, ".tmp", 4)) return 0;
+    const char *d = name + l + 4;
+    if (!*d || strspn(d, "0123456789") != strlen(d) || strlen(d) > 9) return 0;
+    return atol(d);
+}
+
+/* A process is gone when kill(pid, 0) says there is no such process
+   (EPERM means it runs as another user).  Our own pid counts as gone: a
+   recovery runs before this process writes, so a directory with its pid
+   is left by an earlier process that had the same pid (a container). */
+static int pid_gone(long pid)
+{
+    if (pid == (long)getpid()) return 1;
+    return kill((pid_t)pid, 0) && errno == ESRCH;
+}
+
+/* Removes dst.tmp<pid> of processes that are gone. */
+static int recover_tmp(const char *dst, Buf *report, Err *e)
+{
+    char *dir = dir_of(dst);
+    if (!io_is_dir(dir)) { /* no constant/ yet: nothing was ever written */
+        free(dir);
+        return 0;
+    }
+    const char *base = strrchr(dst, '/') ? strrchr(dst, '/') + 1 : dst;
+    char **names;
+    int n = io_list_dir(dir, &names, e), done = 0;
+    for (int i = 0; i < n && done >= 0; i++) {
+        long pid = tmp_pid(names[i], base);
+        if (pid <= 0 || !pid_gone(pid)) continue;
+        char *p = io_join(dir, names[i]);
+        if (io_rm_rf(p, e)) {
+            done = -1;
+        } else {
+            buf_printf(report, "%s: removed: left by process %ld, which is no longer running\n", p, pid);
+            done++;
+        }
+        free(p);
+    }
+    if (n >= 0) io_free_list(names, n);
+    free(dir);
+    return n < 0 ? -1 : done;
+}
+
+/* dst.old~ with dst present is the previous tree: removed; without dst it
+   is the only complete tree: renamed back. */
+static int recover_aside(const char *dst, Buf *report, Err *e)
+{
+    char *old = aside_name(dst);
+    int rc = 0;
+    if (!io_is_dir(old)) {
+        free(old);
+        return 0;
+    }
+    if (io_exists(dst)) {
+        rc = io_rm_rf(old, e);
+        if (!rc) buf_printf(report, "%s: removed: the previous version, left by an interrupted replace\n", old);
+    } else if (rename(old, dst)) {
+        rc = err_set(e, old, 0, "cannot rename back to %s: %s", dst, strerror(errno));
+    } else {
+        buf_printf(report, "%s: restored from %s, where an interrupted replace had moved it\n", dst, old);
+    }
+    free(old);
+    return rc ? -1 : 1;
+}
+
+int io_recover_dir(const char *dst, Buf *report, Err *e)
+{
+    int fd = lock_parent(dst);
+    int a = recover_aside(dst, report, e);
+    int t = a < 0 ? -1 : recover_tmp(dst, report, e);
+    unlock_parent(fd);
+    return a < 0 || t < 0 ? -1 : a + t;
 }
 
 int io_exists(const char *path)

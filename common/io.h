@@ -74,9 +74,28 @@ int io_write_atomic_v(const char *path, const IoPiece *pieces, int npieces, int 
 /* Creates a directory and its parents (like mkdir -p). */
 int io_mkdir_p(const char *path, Err *e);
 /* Writes a whole directory atomically: every file is written into a
-   temporary sibling directory first; io_commit_dir renames it over dst
-   (moving an existing dst aside and removing it afterwards). */
+   temporary sibling directory first (named dst.tmp<pid> by convention, so
+   io_recover_dir knows whose it is); io_commit_dir puts it at dst.  An
+   existing dst is swapped with tmpdir in one step (renameat2
+   RENAME_EXCHANGE) and the old tree, now at tmpdir, removed; so dst is a
+   complete tree at every instant, whenever the process is killed.  Where
+   the filesystem cannot exchange (EINVAL, ENOSYS), dst is moved to
+   dst.old~ first, and a kill between the two renames leaves dst.old~
+   alone, which io_recover_dir renames back.  Commits and recoveries in
+   one directory hold an flock on it, so concurrent writers of the same
+   dst never fail spuriously: each commit replaces the previous one.
+   tmpdir is gone on success; on failure it is left for the caller. */
 int io_commit_dir(const char *tmpdir, const char *dst, Err *e);
+/* Repairs what interrupted commits to dst left behind, and appends one
+   line "path: what was done" per action to report:
+     dst.tmp<pid> whose process is gone (kill(pid, 0) fails with ESRCH,
+       or pid is this process's own): removed;
+     dst.old~ while dst exists: removed (dst is complete);
+     dst.old~ without dst: renamed back to dst.
+   A dst.tmp<pid> of a running process (a concurrent writer) is left
+   alone.  Call it before this process writes dst.  Returns the number of
+   actions (0: nothing to do) or -1. */
+int io_recover_dir(const char *dst, Buf *report, Err *e);
 /* Removes a directory tree (used to purge old time directories). */
 int io_rm_rf(const char *path, Err *e);
 

@@ -1,6 +1,7 @@
 /*
 ** test_io.c: atomic writes, gzip round trips, .gz fallback, and errors of
-** io.c; the Err message format of err.c; mem/buf basics.
+** io.c; directory commits (io_commit_dir) and the recovery rules of
+** io_recover_dir; the Err message format of err.c; mem/buf basics.
 */
 #include "buf.h"
 #include "err.h"
@@ -11,6 +12,7 @@
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 static char *tmp_path(const char *name)
@@ -214,6 +216,150 @@ TEST(commit_dir_replaces)
     free(b);
 }
 
+/* A directory path with one file "f" holding text. */
+static void make_tree(const char *dir, const char *text)
+{
+    Err e;
+    io_mkdir_p(dir, &e);
+    char *f = io_join(dir, "f");
+    io_write_atomic(f, text, strlen(text), 0, &e);
+    free(f);
+}
+
+/* The text of dir/f, or "" (caller frees). */
+static char *tree_text(const char *dir)
+{
+    char *f = io_join(dir, "f");
+    Buf b;
+    buf_init(&b);
+    Err e;
+    char *s = io_read_file(f, &b, NULL, &e) ? mem_strdup("") : mem_strdup(b.p);
+    buf_free(&b);
+    free(f);
+    return s;
+}
+
+/* The pid of a child that has exited and been reaped: a dead process. */
+static long dead_pid(void)
+{
+    pid_t p = fork();
+    if (p == 0) _exit(0);
+    waitpid(p, NULL, 0);
+    return (long)p;
+}
+
+static char *sibling(const char *dst, const char *suffix)
+{
+    char *s = mem_alloc(strlen(dst) + strlen(suffix) + 1);
+    sprintf(s, "%s%s", dst, suffix);
+    return s;
+}
+
+TEST(commit_dir_new_and_empty_dst)
+{
+    char *dst = tmp_path("polyMesh");
+    char *tmp = sibling(dst, ".tmp1");
+    Err e;
+    make_tree(tmp, "A");
+    EXPECT(io_commit_dir(tmp, dst, &e) == 0, "%s", e.msg);
+    char *t = tree_text(dst);
+    EXPECT(!strcmp(t, "A") && !io_exists(tmp), "absent dst: '%s'", t);
+    free(t);
+    /* an empty directory at dst is simply replaced */
+    char *dst2 = tmp_path("empty");
+    io_mkdir_p(dst2, &e);
+    make_tree(tmp, "B");
+    EXPECT(io_commit_dir(tmp, dst2, &e) == 0, "%s", e.msg);
+    t = tree_text(dst2);
+    EXPECT(!strcmp(t, "B") && !io_exists(tmp), "empty dst: '%s'", t);
+    free(t);
+    free(dst2);
+    free(tmp);
+    free(dst);
+}
+
+TEST(commit_dir_leaves_nothing_beside)
+{
+    char *dst = tmp_path("polyMesh");
+    char *tmp = sibling(dst, ".tmp7");
+    Err e;
+    make_tree(dst, "old");
+    for (int k = 0; k < 3; k++) {
+        char text[8];
+        snprintf(text, sizeof text, "new%d", k);
+        make_tree(tmp, text);
+        EXPECT(io_commit_dir(tmp, dst, &e) == 0, "%s", e.msg);
+        char *t = tree_text(dst);
+        EXPECT(!strcmp(t, text), "round %d: '%s'", k, t);
+        free(t);
+    }
+    char *dir = mem_strndup(dst, strlen(dst) - strlen("/polyMesh"));
+    char **names;
+    int n = io_list_dir(dir, &names, &e);
+    EXPECT(n == 1 && !strcmp(names[0], "polyMesh"), "%d entries beside, first '%s'", n, n > 0 ? names[0] : "");
+    io_free_list(names, n);
+    free(dir);
+    free(tmp);
+    free(dst);
+}
+
+TEST(recover_rules)
+{
+    char *dst = tmp_path("polyMesh");
+    char name[64];
+    Err e;
+    /* a dead process's temporary: removed; a running one's (our parent,
+       standing in for a concurrent writer): kept; our own pid: removed */
+    long dead = dead_pid();
+    snprintf(name, sizeof name, ".tmp%ld", dead);
+    char *tdead = sibling(dst, name);
+    snprintf(name, sizeof name, ".tmp%ld", (long)getppid());
+    char *tlive = sibling(dst, name);
+    snprintf(name, sizeof name, ".tmp%ld", (long)getpid());
+    char *town = sibling(dst, name);
+    char *tother = sibling(dst, ".tmpXY"), *old = sibling(dst, ".old~");
+    make_tree(dst, "cur");
+    make_tree(tdead, "x");
+    make_tree(tlive, "y");
+    make_tree(town, "z");
+    make_tree(tother, "w");
+    make_tree(old, "prev");
+    Buf r;
+    buf_init(&r);
+    int n = io_recover_dir(dst, &r, &e);
+    EXPECT(n == 3, "%d actions (expected 3): %s", n, n < 0 ? e.msg : r.p);
+    EXPECT(!io_exists(tdead) && !io_exists(town) && !io_exists(old), "stale entries left");
+    EXPECT(io_exists(tlive) && io_exists(tother), "a running writer's or an unrelated directory was removed");
+    char *t = tree_text(dst);
+    EXPECT(!strcmp(t, "cur"), "dst changed: '%s'", t);
+    free(t);
+    snprintf(name, sizeof name, "left by process %ld, which is no longer running", dead);
+    CONTAINS(r.p, name);
+    CONTAINS(r.p, "polyMesh.old~: removed: the previous version");
+    /* polyMesh.old~ without polyMesh: the only complete grid, put back */
+    io_rm_rf(dst, &e);
+    make_tree(old, "prev");
+    buf_clear(&r);
+    n = io_recover_dir(dst, &r, &e);
+    t = tree_text(dst);
+    EXPECT(n == 1 && !strcmp(t, "prev") && !io_exists(old), "restore: n = %d, dst '%s'", n, t);
+    CONTAINS(r.p, "polyMesh: restored from ");
+    free(t);
+    /* nothing to do, and a parent that does not exist: 0 actions */
+    buf_clear(&r);
+    EXPECT(io_recover_dir(dst, &r, &e) == 0 && r.n == 0, "second recovery acted: %s", r.p);
+    EXPECT(io_recover_dir("no/such/dir/polyMesh", &r, &e) == 0, "missing parent: %s", e.msg);
+    buf_free(&r);
+    io_rm_rf(tlive, &e);
+    io_rm_rf(tother, &e);
+    free(tdead);
+    free(tlive);
+    free(town);
+    free(tother);
+    free(old);
+    free(dst);
+}
+
 int main(void)
 {
     RUN(err_format);
@@ -226,5 +372,8 @@ int main(void)
     RUN(full_disk_keeps_old_file);
     RUN(mkdir_list_rm);
     RUN(commit_dir_replaces);
+    RUN(commit_dir_new_and_empty_dst);
+    RUN(commit_dir_leaves_nothing_beside);
+    RUN(recover_rules);
     return test_summary();
 }
