@@ -4,13 +4,15 @@
 #
 # The stand-in dpkg-query reports every package installed except those
 # listed in $MISSING (until the stand-in apt-get "installs" them); apt-get
-# appends its arguments and DEBIAN_FRONTEND to ./apt.log.
+# appends its arguments and DEBIAN_FRONTEND to ./apt.log, except for a
+# simulation (-s), which goes to ./sim.log and prints "Remv VICTIM" for
+# each package given that $REMOVES lists as "PKG=VICTIM".
 set -u
 top=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
 deps=$top/etc/install-deps
 scratch=$PWD
 
-pass() { echo "PASS $1"; }
+pass() { echo "PASS $1${2:+: $2}"; }
 fail() { echo "FAIL $1: $2"; }
 
 mkdir -p "$scratch/stub"
@@ -24,6 +26,18 @@ printf installed
 EOF
 cat > "$scratch/stub/apt-get" <<'EOF'
 #!/bin/sh
+for a; do
+    if [ "$a" = -s ]; then
+        echo "$* [$DEBIAN_FRONTEND]" >> "$STUB/sim.log"
+        for p; do
+            echo "Inst $p (1.0 Debian:12/stable [amd64])"
+            for r in ${REMOVES:-}; do
+                [ "${r%%=*}" = "$p" ] && echo "Remv ${r#*=} [1.0]"
+            done
+        done
+        exit 0
+    fi
+done
 echo "$* [$DEBIAN_FRONTEND]" >> "$STUB/apt.log"
 if [ "$1" = install ]; then
     for a; do echo "$a" >> "$STUB/installed"; done
@@ -43,7 +57,7 @@ chmod +x "$scratch/stub/"*
 export STUB=$scratch/stub
 
 run() {   # run ARGS...: install-deps with the stubs; output in out.txt
-    rm -f "$STUB/apt.log" "$STUB/installed"
+    rm -f "$STUB/apt.log" "$STUB/sim.log" "$STUB/installed"
     PATH="$STUB:$PATH" "$deps" "$@" > "$scratch/out.txt" 2>&1
 }
 
@@ -55,8 +69,9 @@ else
     pass nothing_missing
 fi
 
-# As root: one update, then one install of exactly the missing packages.
-MISSING="libgsl-dev python3-vtk9" run; rc=$?
+# As root: one update, then one install of exactly the missing packages
+# (python3-paraview missing too: no VTK at all).
+MISSING="libgsl-dev python3-vtk9 python3-paraview" run; rc=$?
 want="update [noninteractive]
 install -y --no-install-recommends libgsl-dev python3-vtk9 [noninteractive]"
 if [ "$rc" -ne 0 ] || [ "$(cat "$STUB/apt.log" 2>/dev/null)" != "$want" ]; then
@@ -81,15 +96,51 @@ else
     pass gnuplot_flavour
 fi
 
-# Optional groups only on request.
-MISSING="clang openfoam" run; rc1=$?
+# OpenFOAM, its examples and strace by default; --minimal skips them;
+# clang only with --fuzz; --openfoam is still accepted.
+extras="clang openfoam openfoam-examples strace"
+MISSING=$extras run --minimal; rc1=$?
 log1=$(cat "$STUB/apt.log" 2>/dev/null)
-MISSING="clang openfoam" run --fuzz --openfoam; rc2=$?
-if [ "$rc1" -ne 0 ] || [ -n "$log1" ] || [ "$rc2" -ne 0 ] \
-    || ! grep -q 'install -y --no-install-recommends clang openfoam' "$STUB/apt.log"; then
-    fail optional_groups "rc=$rc1/$rc2, apt.log: '$(cat "$STUB/apt.log" 2>/dev/null)'"
+MISSING=$extras run; rc2=$?
+log2=$(grep install "$STUB/apt.log" 2>/dev/null)
+MISSING=$extras run --fuzz --openfoam; rc3=$?
+log3=$(grep install "$STUB/apt.log" 2>/dev/null)
+if [ "$rc1" -ne 0 ] || [ -n "$log1" ] || [ "$rc2" -ne 0 ] || [ "$rc3" -ne 0 ] \
+    || [ "$log2" != "install -y --no-install-recommends openfoam openfoam-examples strace [noninteractive]" ] \
+    || [ "$log3" != "install -y --no-install-recommends openfoam openfoam-examples strace clang [noninteractive]" ]; then
+    fail optional_groups "rc=$rc1/$rc2/$rc3, --minimal: '$log1', default: '$log2', --fuzz --openfoam: '$log3'"
 else
     pass optional_groups
+fi
+
+# ParaView's Python installed: its vtk module serves the tests, so
+# python3-vtk9 (which conflicts with it) is not installed, nothing runs.
+MISSING="python3-vtk9" run; rc=$?
+if [ "$rc" -ne 0 ] || [ -e "$STUB/apt.log" ] || [ -e "$STUB/sim.log" ]; then
+    fail paraview_vtk "rc=$rc, apt-get called: $(cat "$STUB/apt.log" "$STUB/sim.log" 2>/dev/null)"
+else
+    pass paraview_vtk
+fi
+
+# A package whose installation would remove another is held back, with
+# the reason; the rest is installed; nothing is ever removed.
+REMOVES="python3-vtk9=python3-paraview" MISSING="libgsl-dev python3-vtk9 python3-paraview" run; rc=$?
+inst=$(grep '^install' "$STUB/apt.log" 2>/dev/null)
+if [ "$rc" -ne 0 ] || [ "$inst" != "install -y --no-install-recommends libgsl-dev [noninteractive]" ] \
+    || grep -q 'remove\|purge' "$STUB/apt.log" \
+    || ! grep -q 'not installing python3-vtk9: apt would remove python3-paraview' "$scratch/out.txt"; then
+    fail removal_held_back "rc=$rc, apt.log: '$(cat "$STUB/apt.log" 2>/dev/null)', output: $(cat "$scratch/out.txt")"
+else
+    pass removal_held_back "$(grep -m1 'not installing' "$scratch/out.txt")"
+fi
+
+# Held back and needed by the build: reported, exit non-zero, no install.
+REMOVES="libgmsh-dev=libvtk9-dev" MISSING="libgmsh-dev" run; rc=$?
+if [ "$rc" -eq 0 ] || grep -q '^install' "$STUB/apt.log" 2>/dev/null \
+    || ! grep -q 'the build needs libgmsh-dev' "$scratch/out.txt"; then
+    fail removal_build_package "rc=$rc, apt.log: '$(cat "$STUB/apt.log" 2>/dev/null)', output: $(cat "$scratch/out.txt")"
+else
+    pass removal_build_package
 fi
 
 # Not root and no working sudo: prints the command, exits non-zero, no apt-get.
