@@ -1,10 +1,16 @@
 """vtk_cells_volume.py FILE VOLUME: reads a legacy .vtk file with VTK's
 own reader and prints "<cells> <volume> <|volume - VOLUME|>", the volume
 summed from every cell's faces by the divergence theorem, so a missing
-or flipped face shows.  Used by the grid tools' tests."""
+or flipped face shows.  Used by the grid tools' tests.  Without a VTK
+module in this Python it runs itself under ParaView's (vtkpython.py)."""
+import os
 import sys
 
-import vtk
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import vtkpython  # noqa: E402
+
+vtkpython.reexec_if_no_vtk()
+import vtk  # noqa: E402
 
 r = vtk.vtkUnstructuredGridReader()
 r.SetFileName(sys.argv[1])
