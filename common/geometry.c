@@ -34,7 +34,7 @@
 #include "cad.h"
 #include "mem.h"
 #include "shape.h"
-#include "stl.h"
+#include "surface.h"
 #include "trisurf.h"
 
 #ifndef M_PI
@@ -77,12 +77,12 @@ const DictKey geometry_keys[] = {
 const DictKey geometry_surface_keys[] = {
     {"type", "wall", "patch type of the surface's boundary faces"},
     {"flow", "outside", "inside | outside: where the flow domain is"},
-    {"shape", NULL, "halfSpace box sphere cylinder cone torus polygon stl cad union intersection difference"},
+    {"shape", NULL, "halfSpace box sphere cylinder cone torus polygon surface stl obj cad union intersection difference"},
     {NULL, NULL, NULL}
 };
 
 const DictKey geometry_shape_keys[] = {
-    {"shape", NULL, "halfSpace box sphere cylinder cone torus polygon stl cad union intersection difference"},
+    {"shape", NULL, "halfSpace box sphere cylinder cone torus polygon surface stl obj cad union intersection difference"},
     {"point", NULL, "halfSpace: a point on the plane"},
     {"normal", NULL, "halfSpace: outward normal (out of the solid)"},
     {"min", NULL, "box: min corner; polygon: start of the extrusion (default unbounded)"},
@@ -98,8 +98,8 @@ const DictKey geometry_shape_keys[] = {
     {"majorRadius", NULL, "torus: centre to tube centre"},
     {"minorRadius", NULL, "torus: tube radius"},
     {"points", NULL, "polygon: ((u v) ...) in the plane normal to axis: (y z), (z x) or (x y)"},
-    {"file", NULL, "stl, cad: file name relative to the case directory"},
-    {"allowOpen", "no", "stl, cad: cut a surface that is not closed (results are undefined near its holes)"},
+    {"file", NULL, "surface, cad: file name relative to the case directory (surface: STL or OBJ, maybe .gz)"},
+    {"allowOpen", "no", "surface, cad: cut a surface that is not closed (results are undefined near its holes)"},
     {"meshSize", "0", "cad: triangle size for the CAD surface triangulation (0: 1/50 of its diagonal)"},
     {"scale", "1", "transform: factor or (sx sy sz), about the origin, applied first"},
     {"rotate", "none", "transform: { axis (0 0 1); angle 30; origin (0 0 0); } in degrees, after scale"},
@@ -340,7 +340,7 @@ static int parse_tri(Parse *p, const Dict *d, int is_cad, const Xf *xf, GeoNode 
         n->cad = cad_open(path, size, n->tri, &e2);
         rc = n->cad ? 0 : -1;
     } else {
-        rc = stl_read(n->tri, path, &e2);
+        rc = surface_read(n->tri, path, &e2);
     }
     if (rc) {
         free(path);
@@ -451,7 +451,7 @@ static int parse_node(Parse *p, const Dict *d, const Xf *outer, int sign, GeoNod
         int op = kind[0] == 'u' ? G_UNION : kind[0] == 'i' ? G_INTER : G_DIFF;
         n = node_new(op);
         rc = parse_csg(p, d, op, &xf, sign, n, e);
-    } else if (!strcmp(kind, "stl") || !strcmp(kind, "cad")) {
+    } else if (!strcmp(kind, "surface") || !strcmp(kind, "stl") || !strcmp(kind, "obj") || !strcmp(kind, "cad")) {
         n = node_new(G_TRI);
         rc = parse_tri(p, d, kind[0] == 'c', &xf, n, e);
         if (!rc) add_leaf(p, n, sign);
@@ -460,8 +460,8 @@ static int parse_node(Parse *p, const Dict *d, const Xf *outer, int sign, GeoNod
         if (k < 0) {
             const DictEntry *en = dict_find(d, "shape");
             return err_set(e, en->file, en->line,
-                           "unknown shape '%s' (halfSpace, box, sphere, cylinder, cone, torus, polygon, stl, cad, "
-                           "union, intersection, difference)", kind);
+                           "unknown shape '%s' (halfSpace, box, sphere, cylinder, cone, torus, polygon, surface, "
+                           "stl, obj, cad, union, intersection, difference)", kind);
         }
         n = node_new(G_PRIM);
         rc = parse_prim(d, k, n, e);

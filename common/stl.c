@@ -293,6 +293,11 @@ static int starts_solid(const char *d, size_t n)
     return n - i == 5 || is_space(d[i + 5]);
 }
 
+int stl_is_binary(const char *data, size_t n)
+{
+    return n >= 84 && (uint64_t)84 + 50 * (uint64_t)le32((const unsigned char *)data + 80) == n;
+}
+
 int stl_parse(TriSurf *s, const char *data, size_t n, const char *name, Err *e)
 {
     trisurf_init(s);
@@ -301,10 +306,7 @@ int stl_parse(TriSurf *s, const char *data, size_t n, const char *name, Err *e)
     if (n >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0 && starts_solid(data + 3, n - 3))
         return parse_ascii(s, data + 3, n - 3, name, e);   /* a UTF-8 byte-order mark */
     const unsigned char *u = (const unsigned char *)data;
-    if (n >= 84) {
-        uint32_t count = le32(u + 80);
-        if ((uint64_t)84 + 50 * (uint64_t)count == n) return parse_binary(s, u, count, name, e);
-    }
+    if (stl_is_binary(data, n)) return parse_binary(s, u, le32(u + 80), name, e);
     int text = starts_solid(data, n) && !memchr(data, '\0', n < 4096 ? n : 4096);
     if (text) return parse_ascii(s, data, n, name, e);
     if (n >= 84) {

@@ -25,6 +25,9 @@
 int stl_read(TriSurf *s, const char *path, Err *e);
 /* Parses an STL held in memory (name for messages). */
 int stl_parse(TriSurf *s, const char *data, size_t n, const char *name, Err *e);
+/* 1 when data has exactly the size of a binary STL (84 + 50 n bytes, n
+   the count at byte 80): the test that decides before any other. */
+int stl_is_binary(const char *data, size_t n);
 /* Writes atomically; binary != 0 for binary STL; a path ending in ".gz"
    is gzipped. */
 int stl_write(const TriSurf *s, const char *path, int binary, Err *e);
