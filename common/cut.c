@@ -78,6 +78,9 @@
 #include "mem.h"
 #include "meshbuild.h"
 
+#ifndef M_SQRT2
+#define M_SQRT2 1.41421356237309504880
+#endif
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
@@ -86,6 +89,8 @@
 #define SIDE_TOL   1e-9  /* box-side recognition, relative to the box */
 #define MAXP       16    /* points of one grid-face polygon (at most 8) */
 #define MAXS       64    /* boundary segments of one cell (at most 24) */
+#define MAXSIDE    (6 * MAXP) /* sides of one cell's grid-face polygons */
+#define PROBE      1000  /* corner probes, in snap distances (local_fluid) */
 
 typedef struct CutPt {
     int64_t key;    /* 3 v + axis, -1: empty slot */
@@ -100,7 +105,6 @@ typedef struct Poly {
     int n;
     int pt[MAXP];
     int leaf[MAXP]; /* leaf of a cut point, -1 */
-    char cut[MAXP]; /* 1: a cut point, 0: a fluid corner */
 } Poly;
 
 typedef struct Seg {
@@ -120,8 +124,7 @@ typedef struct Ctx {
     int64_t sc[3]; /* cell strides */
     char *cls;     /* per vertex: 1 fluid, 0 solid (2: snapping) */
     char *onsurf;  /* per vertex: 1 when on the surface (within snap) */
-    char *full;    /* per Cartesian cell: 1 when whole (see full_cells) */
-    int64_t nfull;
+    unsigned char *lmask; /* per Cartesian cell: its fluid corners (bit q), local_masks */
     int *vpt;      /* per vertex: mesh point or -1 */
     int *cellid;   /* per Cartesian cell: new cell or -1 */
     CutPt *tab;
@@ -286,6 +289,22 @@ static int moved_cut(const Ctx *c, int a, const double p0[3], double xhi, int fl
     return found;
 }
 
+/* The crossing on an unmoved edge from crossings s[0..2] on copies
+   moved by 1, 2 and 4 times a small offset (n of them found): linear
+   extrapolation where the crossing moves with the offset (a surface
+   through the edge), square-root extrapolation where it moves with its
+   square root (a curved surface touching the edge: a circle tangent to a
+   grid line), the crossing itself where it stays put. */
+static double extrapolate(const double s[3], int n)
+{
+    if (n < 2 || s[1] == s[0]) return s[0];
+    double lin = 2 * s[0] - s[1];
+    if (n < 3) return lin;
+    double r = (s[2] - s[1]) / (s[1] - s[0]);
+    if (fabs(r - M_SQRT2) < 0.1) return (M_SQRT2 * s[0] - s[1]) / (M_SQRT2 - 1);
+    return lin;
+}
+
 /* The boundary crossing on an edge that lies in the surface (a grid line
    in a face of a box on a grid plane: its own crossings are not
    transversal).  The edge from vertex v along a is moved by snap x (cell
@@ -305,9 +324,11 @@ static int offset_cut(const Ctx *c, int a, int64_t v, int fluid_lo, double *s, i
         int b = (a + 1 + d / 2) % 3, l1, l2;
         int lo = ijk[b] < c->n[b] ? ijk[b] : ijk[b] - 1;
         double h = c->x[b][lo + 1] - c->x[b][lo];
-        double off = (d & 1 ? -1 : 1) * c->snap * h, s1, s2;
-        if (!moved_cut(c, a, p0, xhi, fluid_lo, b, off, &s1, &l1)) continue;
-        if (moved_cut(c, a, p0, xhi, fluid_lo, b, 2 * off, &s2, &l2)) s1 = 2 * s1 - s2;
+        double off = (d & 1 ? -1 : 1) * c->snap * h, sk[3];
+        int nk = 0;
+        while (nk < 3 && moved_cut(c, a, p0, xhi, fluid_lo, b, (1 << nk) * off, &sk[nk], nk ? &l2 : &l1)) nk++;
+        if (!nk) continue;
+        double s1 = extrapolate(sk, nk);
         if (!found || fabs(s1 - xf) < fabs(*s - xf)) *s = s1, *leaf = l1;
         found = 1;
     }
@@ -507,17 +528,26 @@ static void snap(Ctx *c)
 
 /* ---- step 4: grid faces ---- */
 
-static void poly_add(Poly *p, int pt, int leaf, int cut)
+/* A repeated point is dropped, keeping the leaf of a cut point that
+   falls on a corner (a corner on the surface that is fluid for the cell). */
+static void poly_add(Poly *p, int pt, int leaf)
 {
-    if (p->n > 0 && p->pt[p->n - 1] == pt) return;
+    if (p->n > 0 && p->pt[p->n - 1] == pt) {
+        if (p->leaf[p->n - 1] < 0) p->leaf[p->n - 1] = leaf;
+        return;
+    }
     p->pt[p->n] = pt;
-    p->leaf[p->n] = leaf;
-    p->cut[p->n++] = (char)cut;
+    p->leaf[p->n++] = leaf;
 }
 
 /* The marching-squares polygon of the grid face normal to a with base
-   vertex v0, normal +a (empty when no corner is fluid). */
-static void face_poly_ms(Ctx *c, int a, int64_t v0, Poly *p)
+   vertex v0, normal +a, for the fluid corners in bits (bit q: corner q in
+   the order base, +u, +u+v, +v; empty when bits is 0).  An edge's point
+   enters wherever one of its ends is fluid: as a cut point when the
+   other is not, else as a point on a side of the polygon, so every face
+   that holds part of a grid edge holds that edge's point (no hanging
+   points between faces whose cells see the edge differently). */
+static void face_poly_ms(Ctx *c, int a, int64_t v0, int bits, Poly *p)
 {
     int u = (a + 1) % 3, w = (a + 2) % 3;
     int64_t cv[4] = {v0, v0 + c->sv[u], v0 + c->sv[u] + c->sv[w], v0 + c->sv[w]};
@@ -525,68 +555,19 @@ static void face_poly_ms(Ctx *c, int a, int64_t v0, Poly *p)
     const int eax[4] = {u, w, u, w};
     const int64_t elo[4] = {cv[0], cv[1], cv[3], cv[0]};
     p->n = 0;
-    if (!c->cls[cv[0]] && !c->cls[cv[1]] && !c->cls[cv[2]] && !c->cls[cv[3]]) return;
+    if (!bits) return;
     for (int q = 0; q < 4; q++) {
-        if (c->cls[cv[q]]) poly_add(p, vertex_point(c, cv[q]), -1, 0);
-        if (c->cls[cv[q]] != c->cls[cv[(q + 1) & 3]]) {
+        int fq = (bits >> q) & 1, fn = (bits >> ((q + 1) & 3)) & 1;
+        if (fq) poly_add(p, vertex_point(c, cv[q]), -1);
+        if (fq || fn) {
             CutPt *e = cut_find(c, 3 * elo[q] + eax[q]);
-            if (e) poly_add(p, cut_point(c, e), e->leaf, 1);
+            if (e) poly_add(p, cut_point(c, e), e->leaf);
         }
     }
-    while (p->n > 1 && p->pt[p->n - 1] == p->pt[0]) p->n--;
-}
-
-/* Which corners of the grid face normal to a with base vertex v0 are
-   points of polygon p (bit q for corner q); -1 when p has a point that is
-   no corner. */
-static int poly_corners(const Ctx *c, int a, int64_t v0, const Poly *p)
-{
-    int u = (a + 1) % 3, w = (a + 2) % 3, m = 0;
-    int64_t cv[4] = {v0, v0 + c->sv[u], v0 + c->sv[u] + c->sv[w], v0 + c->sv[w]};
-    for (int r = 0; r < p->n; r++) {
-        int q = 0;
-        while (q < 4 && !(c->vpt[cv[q]] >= 0 && p->pt[r] == c->vpt[cv[q]])) q++;
-        if (q == 4) return -1;
-        m |= 1 << q;
+    while (p->n > 1 && p->pt[p->n - 1] == p->pt[0]) {
+        if (p->leaf[0] < 0) p->leaf[0] = p->leaf[p->n - 1];
+        p->n--;
     }
-    return m;
-}
-
-static int cell_has_fluid(const Ctx *c, int64_t ci)
-{
-    int i = (int)(ci % c->n[0]), j = (int)((ci / c->n[0]) % c->n[1]), k = (int)(ci / c->sc[2]);
-    int64_t v0 = i + c->nv[0] * (j + (int64_t)c->nv[1] * k);
-    for (int q = 0; q < 8; q++)
-        if (c->cls[v0 + (q & 1) + ((q >> 1) & 1) * c->sv[1] + (q >> 2) * c->sv[2]] == 1) return 1;
-    return 0;
-}
-
-/* Does the grid face normal to a with base vertex v0 lie between a whole
-   cell and a cell with no fluid corner, another whole cell or the box
-   side (then it is the whole face)?  Between a whole cell and a cut cell
-   it is the marching-squares polygon, and the whole cell closes the rest
-   of the face with a wall (whole_cell_walls). */
-static int face_whole(const Ctx *c, int a, int64_t v0)
-{
-    if (!c->nfull) return 0;
-    int ijk[3];
-    vertex_ijk(c, v0, ijk);
-    int64_t ci = ijk[0] + c->n[0] * (ijk[1] + (int64_t)c->n[1] * ijk[2]);
-    int up = ijk[a] < c->n[a] ? (c->full[ci] ? 2 : cell_has_fluid(c, ci)) : 0;
-    int dn = ijk[a] > 0 ? (c->full[ci - c->sc[a]] ? 2 : cell_has_fluid(c, ci - c->sc[a])) : 0;
-    return (up == 2 || dn == 2) && up != 1 && dn != 1;
-}
-
-/* The polygon of a grid face: marching squares, or the whole face
-   (face_whole). */
-static void face_poly(Ctx *c, int a, int64_t v0, Poly *p)
-{
-    face_poly_ms(c, a, v0, p);
-    if (!face_whole(c, a, v0) || poly_corners(c, a, v0, p) == 15) return;
-    int u = (a + 1) % 3, w = (a + 2) % 3;
-    int64_t cv[4] = {v0, v0 + c->sv[u], v0 + c->sv[u] + c->sv[w], v0 + c->sv[w]};
-    p->n = 0;
-    for (int q = 0; q < 4; q++) poly_add(p, vertex_point(c, cv[q]), -1, 0);
 }
 
 /* ---- step 5: boundary loops ---- */
@@ -596,13 +577,17 @@ static const double *ptx(const Ctx *c, int pt)
     return c->b.points + 3 * (size_t)pt;
 }
 
-/* Adds the boundary segments of polygon p of a cell; out = 1 when p's
-   normal points out of the cell. */
+/* Adds the sides of polygon p of a cell, reversed to run against the
+   cell's outward normal; out = 1 when p's normal points out of the cell.
+   Sides that two of the cell's faces share cancel (cancel_spurs): what
+   is left is where the cell's grid-face polygons end, its boundary.  So
+   a corner on the surface bounds the fluid wherever the face beside it
+   holds no fluid, whether or not a cut point lies on it. */
 static void poly_segments(const Poly *p, int out, Seg *s, int *ns)
 {
     for (int i = 0; i < p->n; i++) {
         int j = (i + 1) % p->n;
-        if (!p->cut[i] || !p->cut[j] || p->pt[i] == p->pt[j] || *ns >= MAXS) continue;
+        if (p->pt[i] == p->pt[j] || *ns >= MAXSIDE) continue;
         s[(*ns)++] = out ? (Seg){p->pt[j], p->pt[i], p->leaf[j], p->leaf[i]}
                          : (Seg){p->pt[i], p->pt[j], p->leaf[i], p->leaf[j]};
     }
@@ -703,8 +688,8 @@ static void poly_volume(Ctx *c, const int *pt, int n, int rev)
     }
 }
 
-/* An immersed boundary face of the cut cell being built. */
-static void add_wall(Ctx *c, const int *pt, const int *leaf, int n, int cell)
+/* An immersed boundary face of cell `cell`. */
+static void wall_face(Ctx *c, const int *pt, const int *leaf, int n, int cell)
 {
     double S[3], C[3], nv[3];
     geom_face(c->b.points, pt, n, S, C);
@@ -718,9 +703,16 @@ static void add_wall(Ctx *c, const int *pt, const int *leaf, int n, int cell)
            parallel to the section plane): the face's own normal */
         for (int k = 0; k < 3; k++) nv[k] = S[k] / la;
     push_wall(c, patch, nv);
-    poly_volume(c, pt, n, 0);
     c->st->area_boundary += geom_norm(S);
     c->st->nboundary++;
+}
+
+/* An immersed boundary face of the cut cell being built, with its part
+   of the cell's volume. */
+static void add_wall(Ctx *c, const int *pt, const int *leaf, int n, int cell)
+{
+    wall_face(c, pt, leaf, n, cell);
+    poly_volume(c, pt, n, 0);
 }
 
 static void loop_centroid(const Ctx *c, const Loop *L, double m[3])
@@ -1035,30 +1027,23 @@ static int64_t cell_base(const Ctx *c, int i, int j, int k)
     return i + c->nv[0] * (j + (int64_t)c->nv[1] * k);
 }
 
-static int fluid_mask(const Ctx *c, int64_t v0)
-{
-    int m = 0;
-    for (int q = 0; q < 8; q++)
-        if (c->cls[cell_corner(c, v0, q)]) m |= 1 << q;
-    return m;
-}
-
-/* Whole cells [our rule, doc/theory.md §6].  Snapping makes vertices on
-   the surface solid, which is right where the fluid is concave there
-   (flow round a box: the cells inside the box next to its faces and edges
-   vanish) but chamfers the fluid's convex edges and corners when they
-   lie on grid lines (flow inside a grid-aligned box: the cell in a corner
-   would keep only the corner piece at its one fluid vertex).  A cell whose
-   corners are all fluid or on the surface, at least one of each, is
-   therefore kept whole: its faces are the whole grid faces, and those
-   next to a cell with no fluid corner are boundary faces of the surface.
-   Consistency: a face between a whole cell and a cut cell must be the
-   same polygon for both, so a whole cell whose face towards a cut cell is
-   not whole under marching squares is cut after all; repeated until
-   nothing changes.  Before that, solid vertices lying on the surface but
-   met by no grid line crossing (a box corner on a grid vertex) are found
-   by testing the point snap x the way towards each fluid corner of their
-   cells. */
+/* Corners on the surface [our rule, doc/theory.md §6].  Snapping makes
+   every vertex on the surface solid for the whole grid, which is right
+   for the cells on the solid side of the surface there but not for those
+   on its fluid side: a face of the geometry on a grid plane would lose
+   the fluid next to it (the cells along a cylinder's cap on a grid plane
+   would be chamfered to wedges), and flow inside a grid-aligned box
+   would lose its edges and corners.  So each cell decides for itself
+   whether its corners on the surface are fluid, by testing a point a
+   little way (PROBE x the way) towards its centre: the cells on either
+   side of a surface through a vertex see it on their own side, and the
+   two flow sides of one geometry see complementary corners.  A grid face
+   whose two cells see different fluid corners is split: the part both
+   cells see is their shared face, the rest is a wall of the cell that
+   sees it (the cap of the cylinder).  Before that, solid vertices lying
+   on the surface but met by no grid line crossing (a box corner on a
+   grid vertex) are found by testing the point snap x the way towards
+   each fluid corner of their cells. */
 static void surface_corners(Ctx *c)
 {
     for (int k = 0; k < c->n[2]; k++)
@@ -1079,115 +1064,226 @@ static void surface_corners(Ctx *c)
             }
 }
 
-static int whole_candidate(const Ctx *c, int64_t v0)
+/* Is corner q of cell (i, j, k), a vertex on the surface, fluid for
+   that cell? */
+static int local_fluid(const Ctx *c, int i, int j, int k, int q)
 {
-    int nf = 0, nb = 0;
-    for (int q = 0; q < 8; q++) {
-        int64_t v = cell_corner(c, v0, q);
-        if (c->cls[v] == 1) nf++;
-        else if (c->onsurf[v]) nb++;
-        else return 0;
+    const int ijk[3] = {i, j, k};
+    double eta = fmin(PROBE * c->snap, 0.25), x[3];
+    for (int a = 0; a < 3; a++) {
+        double lo = c->x[a][ijk[a]], hi = c->x[a][ijk[a] + 1], v = (q >> a) & 1 ? hi : lo;
+        x[a] = v + eta * ((lo + hi) / 2 - v);
     }
-    return nf && nb;
+    return geometry_fluid(c->g, x);
 }
 
-static void full_cells(Ctx *c)
+/* Each cell's fluid corners: the fluid vertices, and the vertices on the
+   surface whose probe towards the cell's centre is fluid. */
+static void local_masks(Ctx *c)
 {
-    if (!(c->snap > 0)) return;
-    surface_corners(c);
     for (int k = 0; k < c->n[2]; k++)
         for (int j = 0; j < c->n[1]; j++)
-            for (int i = 0; i < c->n[0]; i++)
-                if (whole_candidate(c, cell_base(c, i, j, k))) {
-                    c->full[i + c->n[0] * (j + (int64_t)c->n[1] * k)] = 1;
-                    c->nfull++;
+            for (int i = 0; i < c->n[0]; i++) {
+                int64_t v0 = cell_base(c, i, j, k);
+                int m = 0, on = 0;
+                for (int q = 0; q < 8; q++) {
+                    int64_t v = cell_corner(c, v0, q);
+                    if (c->cls[v]) m |= 1 << q;
+                    else on |= c->onsurf[v] << q;
                 }
-    for (int changed = 1; changed && c->nfull;) {
-        changed = 0;
-        for (int k = 0; k < c->n[2]; k++)
-            for (int j = 0; j < c->n[1]; j++)
-                for (int i = 0; i < c->n[0]; i++) {
-                    int64_t ci = i + c->n[0] * (j + (int64_t)c->n[1] * k), v0 = cell_base(c, i, j, k);
-                    if (!c->full[ci]) continue;
-                    const int ijk[3] = {i, j, k};
-                    for (int a = 0; a < 3 && c->full[ci]; a++)
-                        for (int hi = 0; hi < 2 && c->full[ci]; hi++) {
-                            int nb = ijk[a] + (hi ? 1 : -1);
-                            if (nb < 0 || nb >= c->n[a]) continue;
-                            int64_t cn = ci + (hi ? 1 : -1) * c->sc[a];
-                            int64_t vn = v0 + (hi ? 1 : -1) * c->sv[a];
-                            if (c->full[cn] || !fluid_mask(c, vn)) continue;
-                            Poly p;
-                            int64_t fv = hi ? v0 + c->sv[a] : v0;
-                            face_poly_ms(c, a, fv, &p);
-                            if (poly_corners(c, a, fv, &p) < 0) {
-                                c->full[ci] = 0;
-                                c->nfull--;
-                                changed = 1;
-                            }
-                        }
-                }
+                for (int q = 0; q < 8 && c->snap > 0; q++)
+                    if ((on >> q) & 1 && local_fluid(c, i, j, k, q)) m |= 1 << q;
+                c->lmask[i + c->n[0] * (j + (int64_t)c->n[1] * k)] = (unsigned char)m;
+            }
+}
+
+/* The crossing on the copy of edge (p0, along a to xhi) moved by off,
+   nearest its fluid end, when the copy's ends are fluid and solid like
+   the edge's. */
+static int shifted_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, const double off[3],
+                       double *s, int *leaf)
+{
+    double q0[3], q1[3];
+    for (int k = 0; k < 3; k++) q0[k] = p0[k] + off[k];
+    memcpy(q1, q0, sizeof q1);
+    q1[a] = xhi;
+    if (geometry_fluid(c->g, q0) != fluid_lo || geometry_fluid(c->g, q1) == fluid_lo) return 0;
+    GeoCross cr[8];
+    int k = geometry_crossings(c->g, q0, q1, cr, 8), found = 0;
+    double xf = fluid_lo ? p0[a] : xhi;
+    for (int r = 0; r < k && r < 8; r++) {
+        double x = p0[a] + cr[r].t * (xhi - p0[a]);
+        if (!found || fabs(x - xf) < fabs(*s - xf)) *s = x, *leaf = cr[r].leaf;
+        found = 1;
     }
+    return found;
 }
 
-/* Adds a wall of cell `cell` on the grid face normal to a with base v0:
-   the corners in mask (bit q: corner q), in the face's order, reversed
-   when rev (a lower face of the cell). */
-static void corner_wall(Ctx *c, int a, int64_t v0, int mask, int rev, int cell)
+/* The point of the edge from corner q of cell (i, j, k) along a, whose
+   ends the cell sees differently though neither is fluid for the grid (an
+   edge in a face of the geometry on a grid plane, from a corner on it to
+   one beyond its rim): the crossing on copies of the edge moved snap x
+   (cell width) and twice that towards the cell's centre, extrapolated to
+   no move, as offset_cut does; on the solid end when no copy crosses. */
+static void side_point(Ctx *c, const int ijk[3], int q, int a, int fluid_lo)
 {
-    int u = (a + 1) % 3, w = (a + 2) % 3, pt[4], lf[4] = {-1, -1, -1, -1}, n = 0;
-    int64_t cv[4] = {v0, v0 + c->sv[u], v0 + c->sv[u] + c->sv[w], v0 + c->sv[w]};
-    for (int q = 0; q < 4; q++)
-        if (mask & (1 << q)) pt[n++] = vertex_point(c, cv[q]);
-    if (n < 3) return;
+    int64_t v = cell_corner(c, cell_base(c, ijk[0], ijk[1], ijk[2]), q);
+    int vi[3];
+    vertex_ijk(c, v, vi);
+    double p0[3] = {c->x[0][vi[0]], c->x[1][vi[1]], c->x[2][vi[2]]}, xhi = c->x[a][vi[a] + 1];
+    double h = xhi - p0[a], off[3] = {0, 0, 0}, sk[3], s1;
+    for (int b = 0; b < 3; b++)
+        if (b != a) off[b] = ((q >> b) & 1 ? -1 : 1) * c->snap * (c->x[b][ijk[b] + 1] - c->x[b][ijk[b]]);
+    int l1, l2, nk = 0;
+    CutPt *p;
+    while (nk < 3 && shifted_cut(c, a, p0, xhi, fluid_lo, off, &sk[nk], nk ? &l2 : &l1)) {
+        for (int b = 0; b < 3; b++) off[b] *= 2;
+        nk++;
+    }
+    if (nk) {
+        s1 = extrapolate(sk, nk);
+    } else if (!offset_cut(c, a, v, fluid_lo, &s1, &l1)) {
+        c->st->ninconsistent++;
+        p = cut_insert(c, 3 * v + a);
+        p->at = fluid_lo ? 1 : 0;
+        p->s = fluid_lo ? xhi : p0[a];
+        return;
+    }
+    p = cut_insert(c, 3 * v + a);
+    p->leaf = l1;
+    p->s = fmin(fmax(s1, p0[a]), xhi);
+    if (p->s - p0[a] < c->snap * h) p->at = 0, p->s = p0[a];
+    else if (xhi - p->s < c->snap * h) p->at = 1, p->s = xhi;
+}
+
+/* Points for the edges whose ends a cell sees differently and the grid
+   does not: made before any face, so every face meets the same points. */
+static void local_points(Ctx *c)
+{
+    for (int k = 0; k < c->n[2]; k++)
+        for (int j = 0; j < c->n[1]; j++)
+            for (int i = 0; i < c->n[0]; i++) {
+                int64_t v0 = cell_base(c, i, j, k);
+                int m = c->lmask[i + c->n[0] * (j + (int64_t)c->n[1] * k)], g = 0;
+                for (int q = 0; q < 8; q++) g |= (c->cls[cell_corner(c, v0, q)] != 0) << q;
+                if (m == g) continue;
+                const int ijk[3] = {i, j, k};
+                for (int q = 0; q < 8; q++)
+                    for (int a = 0; a < 3; a++) {
+                        int r = q | 1 << a;
+                        if ((q >> a) & 1 || !(((m >> q) ^ (m >> r)) & 1)) continue;
+                        if (cut_find(c, 3 * cell_corner(c, v0, q) + a)) continue;
+                        side_point(c, ijk, q, a, (m >> q) & 1);
+                    }
+            }
+}
+
+/* Corner r (face order) of a cell's face normal to a (hi: its upper
+   face) as a corner of the cell (bit k: the upper end along axis k). */
+static int face_corner(int a, int hi, int r)
+{
+    int u = (a + 1) % 3, w = (a + 2) % 3;
+    return hi << a | (r == 1 || r == 2) << u | (r >= 2) << w;
+}
+
+/* A cell's fluid corners on its face (a, hi), in face order. */
+static int face_bits(int mask, int a, int hi)
+{
+    int b = 0;
+    for (int r = 0; r < 4; r++) b |= ((mask >> face_corner(a, hi, r)) & 1) << r;
+    return b;
+}
+
+/* A wall of the cell on a grid face: polygon p, reversed when rev (a
+   lower face of the cell). */
+static void face_wall(Ctx *c, Poly *p, int rev, int cell)
+{
     if (rev)
-        for (int l = 0, r = n - 1; l < r; l++, r--) {
-            int t = pt[l];
-            pt[l] = pt[r];
-            pt[r] = t;
+        for (int l = 0, r = p->n - 1; l < r; l++, r--) {
+            int t = p->pt[l], lf = p->leaf[l];
+            p->pt[l] = p->pt[r], p->leaf[l] = p->leaf[r];
+            p->pt[r] = t, p->leaf[r] = lf;
         }
-    add_wall(c, pt, lf, n, cell);
+    wall_face(c, p->pt, p->leaf, p->n, cell);
 }
 
-/* The walls of a whole cell: its faces towards cells with no fluid
-   corner, and on its faces towards cut cells, the part of the face the
-   cut cell's marching-squares polygon leaves out (a corner triangle, or
-   the whole face when that polygon is empty; full_cells made sure the
-   polygon's points are face corners). */
-static void whole_cell_walls(Ctx *c, const int ijk[3], int64_t ci, int64_t v0, int cell)
+/* The walls of a cell on a grid face it sees as polygon h, of which its
+   neighbour shares the part q (marching squares of the corners both see:
+   a polygon on points of h, in h's order): one wall for each run of h's
+   points that q skips, closed by q's side across it (with two diagonal
+   corners h may be a hexagon and q a corner of it, so the rest is not a
+   marching-squares polygon of its own).  Returns 0, adding nothing, when
+   q is not such a part of h. */
+static int face_rest(Ctx *c, const Poly *h, const Poly *q, int rev, int cell)
 {
-    for (int a = 0; a < 3; a++)
-        for (int hi = 0; hi < 2; hi++) {
-            int nb = ijk[a] + (hi ? 1 : -1);
-            if (nb < 0 || nb >= c->n[a]) continue;
-            int64_t cn = ci + (hi ? 1 : -1) * c->sc[a], fv = hi ? v0 + c->sv[a] : v0;
-            if (c->cellid[cn] < 0) {
-                corner_wall(c, a, fv, 15, !hi, cell);
-                continue;
-            }
-            if (c->full[cn]) continue;
-            Poly p;
-            face_poly_ms(c, a, fv, &p);
-            int m = poly_corners(c, a, fv, &p);
-            if (m == 15 || m < 0) continue;
-            if (p.n < 3) {
-                corner_wall(c, a, fv, 15, !hi, cell);
-                continue;
-            }
-            for (int q = 0; q < 4; q++)   /* the corner p skips, with its two neighbours */
-                if (!(m & (1 << q))) corner_wall(c, a, fv, (1 << q) | (1 << ((q + 1) & 3)) | (1 << ((q + 3) & 3)), !hi, cell);
-        }
+    char in[MAXP] = {0};
+    int at[MAXP], descents = 0;
+    for (int r = 0; r < q->n; r++) {
+        at[r] = 0;
+        while (at[r] < h->n && h->pt[at[r]] != q->pt[r]) at[r]++;
+        if (at[r] == h->n) return 0;
+        in[at[r]] = 1;
+    }
+    for (int r = 0; r < q->n; r++) descents += at[(r + 1) % q->n] < at[r];
+    if (q->n >= 3 && descents != 1) return 0;
+    if (q->n < 3) {
+        Poly w = *h;
+        face_wall(c, &w, rev, cell);
+        return 1;
+    }
+    for (int i = 0; i < h->n; i++) {
+        if (!in[i] || in[(i + 1) % h->n]) continue;
+        Poly w;
+        w.n = 0;
+        int j = i;
+        do {
+            w.pt[w.n] = h->pt[j];
+            w.leaf[w.n++] = h->leaf[j];
+            j = (j + 1) % h->n;
+        } while (!in[j] && w.n < MAXP - 1);
+        w.pt[w.n] = h->pt[j];
+        w.leaf[w.n++] = h->leaf[j];
+        if (w.n >= 3) face_wall(c, &w, rev, cell);
+    }
+    return 1;
+}
+
+/* Grid face (a, hi) of Cartesian cell ci (new cell `cell`): its polygon
+   p as the cell sees it (for the cell's volume and boundary loops), and
+   what of it the cell adds: the face it shares with its upper neighbour
+   (each shared face is added by its lower cell), and the part of p the
+   neighbour does not see, as a wall.  Box sides are box_faces's. */
+static void grid_face(Ctx *c, const int ijk[3], int64_t ci, int64_t v0, int a, int hi, int cell, Poly *p)
+{
+    int fa = face_bits(c->lmask[ci], a, hi), nb = ijk[a] + (hi ? 1 : -1);
+    int64_t fv = hi ? v0 + c->sv[a] : v0;
+    face_poly_ms(c, a, fv, fa, p);
+    if (nb < 0 || nb >= c->n[a] || p->n < 3) return;
+    int64_t cn = ci + (hi ? 1 : -1) * c->sc[a];
+    int fb = face_bits(c->lmask[cn], a, !hi);
+    if (fa == fb) {
+        if (hi) meshbuild_face(&c->b, p->pt, p->n, cell, c->cellid[cn], 0);
+        return;
+    }
+    Poly q;
+    face_poly_ms(c, a, fv, fa & fb, &q);
+    if (hi && q.n >= 3) meshbuild_face(&c->b, q.pt, q.n, cell, c->cellid[cn], 0);
+    if (!face_rest(c, p, &q, !hi, cell) && (fa & ~fb)) {
+        face_poly_ms(c, a, fv, fa & ~fb, &q);
+        if (q.n >= 3) face_wall(c, &q, !hi, cell);
+    }
 }
 
 static void boundary_faces(Ctx *c, Poly *pl, Poly *pu, int cell, int mask)
 {
-    Seg s[MAXS];
+    Seg s[MAXSIDE];
     int ns = 0;
     for (int a = 0; a < 3; a++) {
         poly_segments(&pl[a], 0, s, &ns);
         poly_segments(&pu[a], 1, s, &ns);
     }
     ns = cancel_spurs(s, ns);
+    if (ns > MAXS) ns = MAXS; /* a cell's boundary has at most 24 */
     Loop loops[MAXS / 3 + 1];
     int nl = chain(s, ns, loops, MAXS / 3 + 1);
     int diag = 0;
@@ -1220,26 +1316,19 @@ static void cell_faces(Ctx *c, int i, int j, int k)
 {
     int ijk[3] = {i, j, k};
     int64_t ci = i + c->n[0] * (j + (int64_t)c->n[1] * k), v0 = cell_base(c, i, j, k);
-    int cell = c->cellid[ci], mask = fluid_mask(c, v0);
+    int cell = c->cellid[ci], mask = c->lmask[ci];
     Poly pl[3], pu[3];
     double vol = 1;
     for (int a = 0; a < 3; a++) {
-        face_poly(c, a, v0 + c->sv[a], &pu[a]);
-        if (pu[a].n >= 3 && ijk[a] + 1 < c->n[a] && c->cellid[ci + c->sc[a]] >= 0)
-            meshbuild_face(&c->b, pu[a].pt, pu[a].n, cell, c->cellid[ci + c->sc[a]], 0);
+        grid_face(c, ijk, ci, v0, a, 1, cell, &pu[a]);
+        grid_face(c, ijk, ci, v0, a, 0, cell, &pl[a]);
         c->vref[a] = (c->x[a][ijk[a]] + c->x[a][ijk[a] + 1]) / 2;
         vol *= c->x[a][ijk[a] + 1] - c->x[a][ijk[a]];
     }
     c->cvol[cell] = vol;
     if (mask == 255) return;
-    if (c->full[ci]) {
-        whole_cell_walls(c, ijk, ci, v0, cell);
-        c->cvol[cell] = vol;
-        return;
-    }
     c->vacc = 0;
     for (int a = 0; a < 3; a++) {
-        face_poly(c, a, v0, &pl[a]);
         poly_volume(c, pu[a].pt, pu[a].n, 0);
         poly_volume(c, pl[a].pt, pl[a].n, 1);
     }
@@ -1274,7 +1363,7 @@ static int box_faces(Ctx *c, const Mesh *grid, Err *e)
                 ijk[3] = {oc % c->n[0], (oc / c->n[0]) % c->n[1], oc / (c->n[0] * c->n[1])};
             ijk[a] = hi ? c->n[a] : 0;
             Poly q;
-            face_poly(c, a, cell_base(c, ijk[0], ijk[1], ijk[2]), &q);
+            face_poly_ms(c, a, cell_base(c, ijk[0], ijk[1], ijk[2]), face_bits(c->lmask[oc], a, hi), &q);
             if (q.n < 3 || c->cellid[oc] < 0) continue;
             if (!hi)
                 for (int l = 1, r = q.n - 1; l < r; l++, r--) {
@@ -1319,7 +1408,7 @@ static int setup(Ctx *c, const Mesh *grid, Err *e)
     int64_t nv = c->sv[2] * c->nv[2];
     c->cls = mem_alloc((size_t)nv);
     c->onsurf = mem_calloc((size_t)nv, 1);
-    c->full = mem_calloc((size_t)grid->ncells, 1);
+    c->lmask = mem_alloc((size_t)grid->ncells);
     c->vpt = mem_alloc(sizeof(int) * (size_t)nv);
     memset(c->vpt, 0xff, sizeof(int) * (size_t)nv);
     c->cellid = mem_alloc(sizeof(int) * (size_t)grid->ncells);
@@ -1343,7 +1432,7 @@ static void ctx_free(Ctx *c)
 {
     free(c->cls);
     free(c->onsurf);
-    free(c->full);
+    free(c->lmask);
     free(c->vpt);
     free(c->cellid);
     free(c->tab);
@@ -1359,7 +1448,7 @@ static int number_cells(Ctx *c, int **parent)
         for (int j = 0; j < c->n[1]; j++)
             for (int i = 0; i < c->n[0]; i++) {
                 int64_t ci = i + c->n[0] * (j + (int64_t)c->n[1] * k);
-                c->cellid[ci] = fluid_mask(c, cell_base(c, i, j, k)) ? nc++ : -1;
+                c->cellid[ci] = c->lmask[ci] ? nc++ : -1;
             }
     *parent = mem_alloc(sizeof(int) * (size_t)(nc ? nc : 1));
     for (int64_t ci = 0; ci < c->sc[2] * c->n[2]; ci++)
@@ -1427,7 +1516,9 @@ int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o, Mesh *out, C
     classify(&c);
     cut_lines(&c);
     snap(&c);
-    full_cells(&c);
+    if (c.snap > 0) surface_corners(&c);
+    local_masks(&c);
+    local_points(&c);
     int *parent;
     int nc = number_cells(&c, &parent);
     if (nc == 0) {
