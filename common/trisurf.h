@@ -9,6 +9,14 @@
 ** closed and manifold: every edge is shared by exactly two triangles that
 ** traverse it in opposite directions.
 **
+** Several shells.  A file may hold several closed shells (connected
+** components): they may be nested (a cavity inside a solid, an island in
+** the cavity) or overlap (parts of an assembly written one after the
+** other).  The solid is where the winding number of the whole surface is
+** positive, so overlapping outward shells make their union and an
+** inward shell inside an outward one a cavity; trisurf_orient chooses the
+** orientations (doc/theory.md, "Orientation and nesting").
+**
 ** Robustness.  A query point or a grid line may hit a triangle edge or
 ** vertex exactly (a sphere STL cut by a grid through its poles, a box
 ** face on a grid plane).  Every predicate is evaluated per edge, with the
@@ -81,8 +89,17 @@ void trisurf_from_soup(TriSurf *s, const double *xyz, int ntris, const int *tag)
 void trisurf_check(const TriSurf *s, TriTopo *t);
 
 /* Makes the orientation consistent (flood fill over manifold edges) and
-   outward (positive volume).  Returns the number of triangles flipped.
-   Only meaningful for a closed manifold surface. */
+   right for the solid.  The given orientation of the shells is kept when
+   it makes sense: no shell's triangles disagree, every shell with
+   positive volume reaches outside the solid of the others (W <= 0 at one
+   of its points at least, W the others' winding number) and every shell
+   with negative volume lies inside it (W > 0 at all its points).  Else
+   it is repaired: a shell held wholly by an odd number of others (a
+   non-zero winding number of each about every point of the shell) is a
+   cavity, turned inward, every other shell outward.  One ray per point
+   tested, through line buckets along x: linear in the surface size.
+   Returns the number of triangles flipped.  Only meaningful for closed
+   manifold shells (open ones are oriented by the same rule). */
 int trisurf_orient(TriSurf *s);
 
 /* Drops zero-area triangles (repeated points). Returns how many. */
@@ -96,7 +113,7 @@ void trisurf_transform(TriSurf *s, const double A[9], const double b[3]);
    the surface is final and before any query below. */
 int trisurf_prepare(TriSurf *s, Err *e);
 
-/* Inside test: winding number of the surface about x (non-zero: inside),
+/* Inside test: winding number of the surface about x (positive: inside),
    counted along the ray from x in +x direction with the perturbation rule
    above; a point on the surface is the point moved by delta (see above). */
 int trisurf_inside(const TriSurf *s, const double x[3]);
@@ -109,17 +126,20 @@ int trisurf_inside(const TriSurf *s, const double x[3]);
 void trisurf_classify_line(const TriSurf *s, int axis, const double p[3],
                            const double *c, int n, char *in);
 
-/* Crossings of the segment a->b with the surface: parameters t in [0, 1],
-   ascending, and the triangle hit (tri may be NULL).  Segments along an
-   axis (a and b differ in one coordinate only) use the robust projected
-   test above; other segments use orientation predicates with the same
-   per-edge consistency.  The crossing point is the intersection of the
-   segment with the triangle's plane, computed from the barycentric edge
-   values (exact for a face normal to an axis segment and at vertices).
-   A crossing exactly at an end is reported when the segment moved by
-   delta still crosses there, so the count's parity is always
-   inside(a) != inside(b).  Returns the number found (may exceed max; only
-   max written). */
+/* Crossings of the segment a->b with the boundary of the solid:
+   parameters t in [0, 1], ascending, and the triangle hit (tri may be
+   NULL).  Only crossings where the winding number changes between <= 0
+   and > 0 are reported (not those inside an overlap of two shells), so
+   they alternate entering and leaving, starting from inside(a).  Segments
+   along an axis (a and b differ in one coordinate only) use the robust
+   projected test above; other segments use orientation predicates with
+   the same per-edge consistency.  The crossing point is the intersection
+   of the segment with the triangle's plane, computed from the barycentric
+   edge values (exact for a face normal to an axis segment and at
+   vertices).  A crossing exactly at an end is reported when the segment
+   moved by delta still crosses there, so for a closed surface the count's
+   parity is always inside(a) != inside(b).  Returns the number found (may
+   exceed max; only max written). */
 int trisurf_crossings(const TriSurf *s, const double a[3], const double b[3],
                       double *t, int *tri, int max);
 

@@ -13,6 +13,7 @@
 #include "test.h"
 
 #include <stdint.h>
+#include <time.h>
 
 #include "mem.h"
 #include "trisurf.h"
@@ -308,6 +309,273 @@ TEST(orient_inverted_and_cavity)
     double in[3] = {0.1, 0.5, 0.5}, cav[3] = {0.5, 0.5, 0.5};
     EXPECT(trisurf_inside(&s, in) == 1 && trisurf_inside(&s, cav) == 0, "hollow inside %d cavity %d",
            trisurf_inside(&s, in), trisurf_inside(&s, cav));
+    trisurf_free(&s);
+}
+
+/* ---------------------------------------------------------------- shells */
+
+/* A file of several closed shells: each given as a box lo..hi, outward
+   (+1) or inward (-1). */
+typedef struct Shell {
+    double lo[3], hi[3];
+    int dir;
+} Shell;
+
+static void reverse_tris(double *xyz, int n)
+{
+    for (int i = 0; i < n; i++)
+        for (int q = 0; q < 3; q++) {
+            double x = xyz[9 * i + 3 + q];
+            xyz[9 * i + 3 + q] = xyz[9 * i + 6 + q];
+            xyz[9 * i + 6 + q] = x;
+        }
+}
+
+static void shells(TriSurf *s, const Shell *sh, int n)
+{
+    double *xyz = mem_alloc(108 * sizeof(double) * (size_t)n);
+    for (int i = 0; i < n; i++) {
+        box_soup(xyz + 108 * i, sh[i].lo, sh[i].hi);
+        if (sh[i].dir < 0) reverse_tris(xyz + 108 * i, 12);
+    }
+    trisurf_from_soup(s, xyz, 12 * n, NULL);
+    free(xyz);
+}
+
+/* Solid volume from the crossing lists of N x N lines along `axis`
+   through the cell centres of the unit square of the other two axes,
+   from -0.5 to 1.5: each crossing toggles the state, which starts as
+   trisurf_inside at the start and must end as trisurf_inside at the end
+   (*bad counts lines where it does not, or where a crossing does not
+   alternate entering and leaving by its triangle's normal). */
+static double volume_by_crossings(const TriSurf *s, int axis, int N, int *bad)
+{
+    double V = 0, h = 1.0 / N;
+    *bad = 0;
+    for (int i = 0; i < N; i++)
+        for (int j = 0; j < N; j++) {
+            double a[3], b[3], t[64];
+            int tri[64];
+            a[axis] = -0.5;
+            b[axis] = 1.5;
+            a[(axis + 1) % 3] = b[(axis + 1) % 3] = (i + 0.5) * h;
+            a[(axis + 2) % 3] = b[(axis + 2) % 3] = (j + 0.5) * h;
+            int k = trisurf_crossings(s, a, b, t, tri, 64), in = trisurf_inside(s, a);
+            double len = 0, t0 = 0;
+            for (int q = 0; q < k && q < 64; q++) {
+                double n[3];
+                trisurf_normal(s, tri[q], n);
+                if ((n[axis] < 0) != !in) ++*bad;   /* entering through an inward face */
+                if (in) len += t[q] - t0;
+                in = !in;
+                t0 = t[q];
+            }
+            if (in) len += 1 - t0;
+            if (k > 64 || in != trisurf_inside(s, b)) ++*bad;
+            V += 2 * len * h * h;
+        }
+    return V;
+}
+
+/* Solid volume counted on the N^3 cell centres of the unit cube with
+   trisurf_classify_line along `axis`. */
+static double volume_by_lines(const TriSurf *s, int axis, int N)
+{
+    double h = 1.0 / N, *c = mem_alloc((size_t)N * sizeof *c);
+    char *in = mem_alloc((size_t)N);
+    for (int i = 0; i < N; i++) c[i] = (i + 0.5) * h;
+    long count = 0;
+    for (int i = 0; i < N; i++)
+        for (int j = 0; j < N; j++) {
+            double p[3];
+            p[axis] = 0;
+            p[(axis + 1) % 3] = c[i];
+            p[(axis + 2) % 3] = c[j];
+            trisurf_classify_line(s, axis, p, c, N, in);
+            for (int q = 0; q < N; q++) count += in[q];
+        }
+    free(c);
+    free(in);
+    return (double)count * h * h * h;
+}
+
+static int in_box(const Shell *b, const double x[3])
+{
+    return x[0] > b->lo[0] && x[0] < b->hi[0] && x[1] > b->lo[1] && x[1] < b->hi[1] && x[2] > b->lo[2] &&
+           x[2] < b->hi[2];
+}
+
+/* Random oblique segments: the state between consecutive crossings (and
+   at the ends, by trisurf_inside) is `solid` at the midpoint; returns the
+   number of segments where it is not. */
+static int oblique_states(const TriSurf *s, int (*solid)(const double *), uint64_t seed)
+{
+    int bad = 0;
+    for (int i = 0; i < 3000; i++) {
+        double a[3], b[3], t[66];
+        for (int q = 0; q < 3; q++) a[q] = -0.2 + 1.4 * rnd(&seed), b[q] = -0.2 + 1.4 * rnd(&seed);
+        int k = trisurf_crossings(s, a, b, t + 1, NULL, 64), in = trisurf_inside(s, a), wrong = 0;
+        if (k > 64) k = 64, wrong = 1;
+        t[0] = 0;
+        t[k + 1] = 1;
+        wrong |= in != solid(a) || (in ^ (k % 2)) != trisurf_inside(s, b);
+        for (int q = 0; q <= k; q++, in = !in) {
+            double x[3];
+            for (int c = 0; c < 3; c++) x[c] = a[c] + 0.5 * (t[q] + t[q + 1]) * (b[c] - a[c]);
+            if (t[q + 1] - t[q] > 1e-9 && in != solid(x)) wrong = 1;
+        }
+        bad += wrong;
+    }
+    return bad;
+}
+
+static const Shell overlap_a = {{0.21, 0.21, 0.21}, {0.61, 0.61, 0.61}, 1};
+static const Shell overlap_b = {{0.31, 0.31, 0.31}, {0.71, 0.71, 0.71}, 1};
+
+static int overlap_union(const double *x) { return in_box(&overlap_a, x) || in_box(&overlap_b, x); }
+
+/* Checks the solid volume V by crossings and by line classification on
+   all three axes (exact to round-off: every face lies on a cell face of
+   the 100^3 sampling grid). */
+static void expect_volume(const TriSurf *s, double V, const char *what)
+{
+    for (int axis = 0; axis < 3; axis++) {
+        int bad;
+        double vc = volume_by_crossings(s, axis, 100, &bad), vl = volume_by_lines(s, axis, 100);
+        EXPECT(bad == 0 && fabs(vc - V) < 1e-13 && fabs(vl - V) < 1e-12,
+               "%s, axis %d: volume %.15g by crossings (%d bad lines), %.15g by lines, exact %.15g", what, axis,
+               vc, bad, vl, V);
+    }
+}
+
+/* Two overlapping outward cubes in one file: the solid is their union,
+   0.4^3 + 0.4^3 - 0.3^3 = 0.101 (was their XOR, 0.074: the second cube's
+   probe point lay in the first and it was turned into a cavity). */
+TEST(overlapping_shells_union)
+{
+    Shell sh[2] = {overlap_a, overlap_b};
+    TriSurf s;
+    shells(&s, sh, 2);
+    int f = trisurf_orient(&s);
+    EXPECT(f == 0, "flipped %d triangles of two outward overlapping cubes", f);
+    prepared(&s);
+    expect_volume(&s, 0.101, "overlapping cubes");
+    int bad = oblique_states(&s, overlap_union, 21);
+    EXPECT(bad == 0, "%d of 3000 oblique segments with wrong states", bad);
+    trisurf_free(&s);
+    /* the same with one triangle of the second cube reversed: the
+       orientation is repaired, by containment of whole shells */
+    double xyz[216];
+    box_soup(xyz, overlap_a.lo, overlap_a.hi);
+    box_soup(xyz + 108, overlap_b.lo, overlap_b.hi);
+    reverse_tris(xyz + 108 + 9 * 5, 1);
+    trisurf_from_soup(&s, xyz, 24, NULL);
+    f = trisurf_orient(&s);
+    EXPECT(f == 1, "repair: flipped %d triangles, expected 1", f);
+    prepared(&s);
+    expect_volume(&s, 0.101, "overlapping cubes, repaired");
+    trisurf_free(&s);
+}
+
+static const Shell hollow[3] = {{{0, 0, 0}, {1, 1, 1}, 1},
+                                {{0.2, 0.2, 0.2}, {0.8, 0.8, 0.8}, -1},
+                                {{0.35, 0.35, 0.35}, {0.65, 0.65, 0.65}, 1}};
+
+/* A cube with an inward cube inside is a hollow cube (kept as given), and
+   so is the pair given both outward (the inner one repaired); three
+   levels alternate solid, cavity, island in every orientation they are
+   given in: 1 - 0.6^3 + 0.3^3 = 0.811. */
+TEST(nested_shells)
+{
+    TriSurf s;
+    shells(&s, hollow, 2);
+    int f = trisurf_orient(&s);
+    EXPECT(f == 0, "hollow cube given right: flipped %d", f);
+    prepared(&s);
+    expect_volume(&s, 1 - 0.216, "hollow cube");
+    trisurf_free(&s);
+    static const int dirs[4][3] = {{1, -1, 1}, {1, 1, 1}, {-1, -1, -1}, {-1, 1, -1}};
+    static const int flips[4] = {0, 12, 24, 36};
+    for (int c = 0; c < 4; c++) {
+        Shell sh[3];
+        memcpy(sh, hollow, sizeof sh);
+        for (int i = 0; i < 3; i++) sh[i].dir = dirs[c][i];
+        shells(&s, sh, 3);
+        f = trisurf_orient(&s);
+        EXPECT(f == flips[c], "three levels given (%d %d %d): flipped %d, expected %d", dirs[c][0], dirs[c][1],
+               dirs[c][2], f, flips[c]);
+        prepared(&s);
+        expect_volume(&s, 1 - 0.216 + 0.027, "three levels");
+        TriTopo t;
+        trisurf_check(&s, &t);
+        NEAR(t.volume, 0.811, 1e-15);
+        trisurf_free(&s);
+    }
+}
+
+/* Two overlapping cavities in a cube: 1 - 0.101 whether given inward
+   (kept) or outward (repaired), and an island given outward in a cavity
+   but reaching into its wall keeps its orientation: the solid is the
+   hollow cube and the island, 1 - 0.216 + 0.3^3 = 0.811. */
+TEST(overlapping_cavities)
+{
+    for (int dir = -1; dir <= 1; dir += 2) {
+        Shell sh[3] = {{{0, 0, 0}, {1, 1, 1}, 1}, overlap_a, overlap_b};
+        sh[1].dir = sh[2].dir = dir;
+        TriSurf s;
+        shells(&s, sh, 3);
+        int f = trisurf_orient(&s);
+        EXPECT(f == (dir > 0 ? 24 : 0), "cavities given %+d: flipped %d", dir, f);
+        prepared(&s);
+        expect_volume(&s, 1 - 0.101, "overlapping cavities");
+        trisurf_free(&s);
+    }
+    Shell sh[3] = {hollow[0], hollow[1], {{0.1, 0.1, 0.1}, {0.5, 0.5, 0.5}, 1}};
+    TriSurf s;
+    shells(&s, sh, 3);
+    int f = trisurf_orient(&s);
+    EXPECT(f == 0, "island into the wall: flipped %d", f);
+    prepared(&s);
+    expect_volume(&s, 0.811, "island reaching into the wall");
+    trisurf_free(&s);
+}
+
+/* Thousands of small closed components: the nesting test must not be
+   quadratic in their number.  A 40^3 lattice of tetrahedra (64000
+   components, 256000 triangles) inside a cube, given outward, with every
+   third one inward: all become cavities. */
+TEST(many_components)
+{
+    enum { M = 40 };
+    int n = M * M * M, nt = 4 * n + 12;
+    double *xyz = mem_alloc(9 * sizeof(double) * (size_t)nt), h = 1.0 / M, Vt = 0;
+    double lo[3] = {-0.5, -0.5, -0.5}, hi[3] = {1.5, 1.5, 1.5};
+    box_soup(xyz, lo, hi);
+    for (int c = 0; c < n; c++) {
+        double o[3] = {(c % M + 0.25) * h, (c / M % M + 0.25) * h, (c / M / M + 0.25) * h}, e = 0.5 * h;
+        double P[4][3] = {{o[0], o[1], o[2]}, {o[0] + e, o[1], o[2]}, {o[0], o[1] + e, o[2]}, {o[0], o[1], o[2] + e}};
+        static const int F[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+        for (int q = 0; q < 4; q++)
+            for (int m = 0; m < 3; m++)
+                memcpy(xyz + 9 * (12 + 4 * c + q) + 3 * m, P[F[q][c % 3 ? m : 2 - m]], 3 * sizeof(double));
+        Vt += e * e * e / 6;
+    }
+    TriSurf s;
+    trisurf_from_soup(&s, xyz, nt, NULL);
+    free(xyz);
+    clock_t t0 = clock();
+    int f = trisurf_orient(&s);
+    double secs = (double)(clock() - t0) / CLOCKS_PER_SEC;
+    double limit = 1;   /* 3.6 s with the pairwise nesting test it replaces */
+#ifdef __SANITIZE_ADDRESS__
+    limit *= 5;
+#endif
+    EXPECT(secs < limit, "orienting %d components took %.2f s (limit %g s)", n + 1, secs, limit);
+    int want = 4 * (n - (n + 2) / 3);   /* the outward ones turn */
+    EXPECT(f == want, "flipped %d, expected %d", f, want);
+    TriTopo t;
+    trisurf_check(&s, &t);
+    NEAR(t.volume, 8 - Vt, 1e-10);   /* 256012 terms summed */
     trisurf_free(&s);
 }
 
@@ -842,6 +1110,10 @@ int main(void)
     RUN(duplicated_triangle);
     RUN(flipped_triangle_and_repair);
     RUN(orient_inverted_and_cavity);
+    RUN(overlapping_shells_union);
+    RUN(nested_shells);
+    RUN(overlapping_cavities);
+    RUN(many_components);
     RUN(degenerate_triangles);
     RUN(transform_mirror);
     RUN(icosphere_volume_area);
