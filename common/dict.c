@@ -431,6 +431,7 @@ typedef struct Parser {
     int nincl;               /* #include nesting */
     int depth;               /* nesting of values and dictionaries */
     int depth0;              /* depth at the top level of this file */
+    int ntop;                /* entries and directives read at that level */
     int binary, label_bytes, scalar_bytes;
     char cls[64];            /* FoamFile class */
     int list_w;              /* element type of the next list from List<T>: */
@@ -1027,6 +1028,46 @@ static int dict_pairs(const DictNode *nd, size_t size)
     return 1;
 }
 
+/* The item count a size prefix gives: a list of name-dictionary pairs
+   counts its pairs, as OpenFOAM's PtrList<entry> does, every other list
+   its items. */
+static size_t counted_items(const DictNode *nd)
+{
+    if (nd->kind == DN_LIST && nd->n > 0 && nd->n % 2 == 0 && dict_pairs(nd, nd->n / 2)) return nd->n / 2;
+    return nd->kind == DN_LIST || nd->kind == DN_NUMS || nd->kind == DN_LABELS || nd->kind == DN_RAGGED ? nd->n : 0;
+}
+
+/* The error for a size prefix that does not count its list, after the
+   prefix what ("keyword 'x': ", "internalField: " or ""). */
+static int size_error(Parser *P, int line, const char *what, double size, const DictNode *nd)
+{
+    char pairs[80] = "";
+    if (counted_items(nd) != nd->n)
+        snprintf(pairs, sizeof pairs, " (%zu name-dictionary pairs: the size counts the pairs)", counted_items(nd));
+    return perr(P, line, "%slist size %.0f does not match the %zu items read%s", what, size, nd->n, pairs);
+}
+
+/* A size written apart from its list, "x 3 (1 2 3);" or "List<scalar> 3
+   (1 2 3)": the values keep the number as a node of its own, because in
+   "arc 1 5 (0 1 0)" it is one.  Where it can only be a size, as the whole
+   value of an entry (whole: the values are an entry's) or right after a
+   List<T> word, it must count the list, as OpenFOAM's List reader
+   requires.  key names the entry in messages (NULL: none). */
+static int check_sizes(Parser *P, const NodeVec *v, int whole, const char *key)
+{
+    for (size_t i = 0; i + 1 < v->n; i++) {
+        const DictNode *a = v->v[i], *b = v->v[i + 1], *t = i > 0 ? v->v[i - 1] : NULL;
+        int typed = t && t->kind == DN_WORD && strncmp(t->text, "List<", 5) == 0;
+        if (!(typed || (whole && v->n == 2)) || a->kind != DN_NUMBER || !a->is_int || a->num < 0) continue;
+        if (b->kind != DN_LIST && b->kind != DN_NUMS && b->kind != DN_LABELS && b->kind != DN_RAGGED) continue;
+        if (a->num == (double)counted_items(b)) continue;
+        char what[300] = "";
+        if (key && key[0]) snprintf(what, sizeof what, typed ? "%.200s: " : "keyword '%.200s': ", key);
+        return size_error(P, b->line, what, a->num, b);
+    }
+    return 0;
+}
+
 /* The list at P->p ('('); size < 0 when no size was given. */
 static int parse_list(Parser *P, Dict *d, long size, int line, NodeVec *out)
 {
@@ -1056,7 +1097,9 @@ static int parse_list(Parser *P, Dict *d, long size, int line, NodeVec *out)
             if (it.n == before + 1 && it.v[before]->kind == DN_WORD) hint = mem_strdup(it.v[before]->text);
         }
         free(hint);
+        hint = NULL;
         P->p++;
+        if (check_sizes(P, &it, 0, NULL)) goto fail;
         nd = compact(P, &it, line0);
         if (!nd) {
             nd = node_new(DN_LIST, P->file, line0);
@@ -1074,10 +1117,10 @@ static int parse_list(Parser *P, Dict *d, long size, int line, NodeVec *out)
     }
 done:
     P->depth--;
-    if (size >= 0 && nd->n != (size_t)size && !dict_pairs(nd, (size_t)size)) {
-        size_t got = nd->n;
+    if (size >= 0 && counted_items(nd) != (size_t)size) {
+        size_error(P, line, "", (double)size, nd);
         node_free(nd);
-        return perr(P, line, "list size %ld does not match the %zu items read", size, got);
+        return -1;
     }
     nv_push(out, nd);
     return 0;
@@ -1478,16 +1521,85 @@ static int parse_values(Parser *P, Dict *d, NodeVec *vals, const char *key, int 
     for (;;) {
         if (skip_ws(P)) return -1;
         if (P->p >= P->end || *P->p == '}') {
-            if (bare) return 0;
+            if (bare) return check_sizes(P, vals, 1, NULL);
             return perr(P, kline, "expected ';' after value of keyword '%s'", key);
         }
         if (*P->p == ';') {
             P->p++;
-            return 0;
+            return check_sizes(P, vals, 1, bare ? NULL : key);
         }
         if (bare == 2) class_list_type(P);
         if (parse_value(P, d, vals, NULL)) return -1;
     }
+}
+
+/* ---- the FoamFile header ---- */
+
+static void describe(const DictNode *nd, char *s, size_t n);
+
+/* One header entry as OpenFOAM's IOobject::readHeader reads it
+   (dictionary::get<T> in v1912): present when required, a single token
+   (more is "Entry 'version' has 1 excess tokens", usually a missing ';'),
+   of the kind asked for (a number, or a word or string). */
+static int header_entry(Parser *P, const Dict *h, const char *key, int number, int required)
+{
+    const DictEntry *en = NULL;
+    for (size_t i = 0; i < h->n && !en; i++)
+        if (!h->entries[i].is_regex && strcmp(h->entries[i].key, key) == 0) en = &h->entries[i];
+    const char *want = number ? "one number" : "one word";
+    if (!en)
+        return required ? perr(P, h->line, "FoamFile header: entry '%s' is missing", key) : 0;
+    if (en->dict) return perr(P, en->line, "FoamFile header: '%s' must be %s, found a sub-dictionary", key, want);
+    if (en->nvals == 0) return perr(P, en->line, "FoamFile header: '%s' has no value", key);
+    char what[128];
+    if (en->nvals > 1) {
+        describe(en->vals[1], what, sizeof what);
+        return perr(P, en->line, "FoamFile header: entry '%s' has %zu excess token%s (%s...), expected %s; a "
+                                 "missing ';'?", key, en->nvals - 1, en->nvals > 2 ? "s" : "", what, want);
+    }
+    const DictNode *nd = en->vals[0];
+    if (number ? nd->kind == DN_NUMBER : nd->kind == DN_WORD || nd->kind == DN_STRING) return 0;
+    describe(nd, what, sizeof what);
+    return perr(P, nd->line, "FoamFile header: '%s' must be %s, found %s", key, want, what);
+}
+
+/* "label=N" or "scalar=N" in the arch string: absent, 32 or 64. */
+static int arch_bits(Parser *P, int line, const char *arch, const char *key)
+{
+    const char *s = strstr(arch, key);
+    if (!s) return 0;
+    s += strlen(key);
+    if (strncmp(s, "32", 2) == 0 && !is_digit_c(s[2])) return 0;
+    if (strncmp(s, "64", 2) == 0 && !is_digit_c(s[2])) return 0;
+    return perr(P, line, "FoamFile header: arch \"%s\": %s must be 32 or 64", arch, key);
+}
+
+/* The checks OpenFOAM makes on a header, and the arch sizes this reader
+   can decode.  Every entry present must have the right form; format and
+   object must be present.  version may be absent (v1912 requires it, the
+   Foundation's releases default it, nothing here depends on it), and so
+   may class: the readers whose files have a class check it themselves
+   (field_read, field_probe, the polyMesh reader), with messages that say
+   which class they expected.  OpenFOAM only warns about an unknown format
+   and reads the file as ascii; here it is an error, since a misspelt
+   "binary" would make every raw list unreadable. */
+static int check_header(Parser *P, const Dict *h)
+{
+    if (header_entry(P, h, "version", 1, 0) || header_entry(P, h, "format", 0, 1) ||
+        header_entry(P, h, "class", 0, 0) || header_entry(P, h, "object", 0, 1) ||
+        header_entry(P, h, "arch", 0, 0))
+        return -1;
+    const DictEntry *f = dict_find(h, "format");
+    const char *fmt = f->vals[0]->text;
+    if (strcmp(fmt, "ascii") != 0 && strcmp(fmt, "binary") != 0)
+        return perr(P, f->line, "FoamFile header: format '%s' is neither ascii nor binary", fmt);
+    const DictEntry *a = dict_find(h, "arch");
+    if (!a || a->is_regex) return 0;
+    const char *arch = a->vals[0]->text;
+    if (arch_bits(P, a->line, arch, "label=") || arch_bits(P, a->line, arch, "scalar=")) return -1;
+    if (strcmp(fmt, "binary") == 0 && strstr(arch, "MSB"))
+        return perr(P, a->line, "FoamFile header: arch \"%s\": big-endian binary files are not supported", arch);
+    return 0;
 }
 
 static void header_settings(Parser *P, const Dict *h)
@@ -1626,6 +1738,7 @@ static int parse_entries(Parser *P, Dict *d, int braced, int line0)
             P->p++;
             continue;
         }
+        if (P->depth == P->depth0) P->ntop++;   /* for the FoamFile-first rule */
         if (c == '#') {
             if (directive(P, d)) return -1;
             continue;
@@ -1676,6 +1789,11 @@ static int parse_entries(Parser *P, Dict *d, int braced, int line0)
             if (parse_entries(P, en.dict, 1, brace)) goto fail;
             P->depth--;
             if (strcmp(en.key, "FoamFile") == 0 && P->depth == P->depth0) {
+                if (P->ntop > 1) {
+                    perr(P, line, "FoamFile header after other entries: it must come first, as OpenFOAM reads it");
+                    goto fail;
+                }
+                if (check_header(P, en.dict)) goto fail;
                 header_settings(P, en.dict);
                 if (P->up) {   /* an included file's header is not an entry */
                     entry_clear(&en);
@@ -1684,6 +1802,10 @@ static int parse_entries(Parser *P, Dict *d, int braced, int line0)
             }
             entry_add(d, &en);
             continue;
+        }
+        if (strcmp(en.key, "FoamFile") == 0 && P->depth == P->depth0) {
+            perr(P, line, "FoamFile header must be a dictionary { version 2.0; format ascii; class ...; object ...; }");
+            goto fail;
         }
         if (parse_values(P, d, &vals, en.key, line, 0)) goto fail;
         if (vals.n > 1 && vals.v[0]->kind == DN_DICT) {
@@ -2013,7 +2135,7 @@ const DictNode *dict_entry_value(const DictEntry *en, Err *e)
        single value is expected it can only be the list's size */
     if (en->nvals == 2 && en->vals[0]->kind == DN_NUMBER && en->vals[0]->is_int && en->vals[0]->num >= 0 &&
         is_listlike(en->vals[1])) {
-        if (en->vals[0]->num != (double)dict_node_len(en->vals[1])) {
+        if (en->vals[0]->num != (double)counted_items(en->vals[1])) {
             err_set(e, en->file, en->vals[0]->line, "keyword '%s': list size %.0f does not match the %zu items read",
                     en->key, en->vals[0]->num, dict_node_len(en->vals[1]));
             return NULL;
@@ -2518,6 +2640,7 @@ int dict_set(Dict *d, const char *key, const char *value_text, Err *e)
         }
         if (parse_value(&P, d, &vals, NULL)) goto fail;
     }
+    if (check_sizes(&P, &vals, 1, key)) goto fail;
     DictEntry en;
     memset(&en, 0, sizeof en);
     en.key = mem_strdup(key);

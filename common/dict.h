@@ -34,6 +34,17 @@
 ** to ';', '}' or the end; dict_find(d, "") returns it.  "N(" and N alone
 ** on its line followed by "(" are sized lists; "arc 1 5 (0 1 0)" on one
 ** line is the number 5 and a list.  "N ( name { } ... )" counts pairs.
+** Every size is checked while parsing: of a sized list, of a binary list,
+** and of a number written apart from its list where it can only be a
+** size: the whole value of an entry ("x 3 (1 2 3);") or right after a
+** List<T> word ("List<scalar> 3 (1 2 3)").
+**
+** The FoamFile header, when there is one, must be the first entry and is
+** checked as OpenFOAM checks it: format (ascii or binary) and object
+** present; version (a number), format, class, object (words or strings)
+** and arch (a string with label= and scalar= 32 or 64) each exactly one
+** token ("file:line: FoamFile header: entry 'version' has 1 excess token
+** ..."), so a missing ';' is caught.  A file without a header is read.
 **
 ** Directives: #include "file" (relative to the including file),
 ** #includeEtc and #includeFunc are read and ignored with a warning kept in

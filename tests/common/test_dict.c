@@ -11,6 +11,7 @@
 #include "buf.h"
 #include "foam.h"
 #include "io.h"
+#include "mem.h"
 
 #include "test.h"
 
@@ -267,14 +268,15 @@ TEST(general_path_equals_fast_path)
 TEST(size_then_list_on_one_line)
 {
     Err e;
-    Dict *d = parse("x 3 (0 0.5 1);\nbad 4 (1 2 3);\narc 1 5 (1.1 0 0.5);\n", &e);
+    /* a size that does not count its list is refused by the parser, not
+       only where the value is used (issue 9) */
+    const char *msg = parse_error("x 3 (0 0.5 1);\nbad 4 (1 2 3);\narc 1 5 (1.1 0 0.5);\n");
+    CONTAINS(msg, "test.dict:2: keyword 'bad': list size 4 does not match the 3 items read");
+    Dict *d = parse("x 3 (0 0.5 1);\narc 1 5 (1.1 0 0.5);\n", &e);
     EXPECT(d, "%s", e.msg);
     if (!d) return;
     const DictNode *nd = dict_entry_value(dict_find(d, "x"), &e);
     EXPECT(nd && dict_node_len(nd) == 3, "size and list on one line not taken as one list: %s", e.msg);
-    nd = dict_entry_value(dict_find(d, "bad"), &e);
-    EXPECT(!nd, "wrong size accepted");
-    CONTAINS(e.msg, "test.dict:2: keyword 'bad': list size 4 does not match the 3 items read");
     /* several values where one is expected: still an error */
     nd = dict_entry_value(dict_find(d, "arc"), &e);
     EXPECT(!nd, "arc accepted as a single value");
@@ -573,6 +575,110 @@ TEST(parse_errors_exact)
     }
 }
 
+/* ---- the FoamFile header (issue 9): OpenFOAM v1912's checks ---- */
+
+TEST(header_checks)
+{
+    static const struct { const char *text, *msg; } bad[] = {
+        {"FoamFile\n{\n    version 2.0 nan;\n    format ascii;\n    class dictionary;\n    object x;\n}\na 1;\n",
+         "test.dict:3: FoamFile header: entry 'version' has 1 excess token (word 'nan'...), expected one number; "
+         "a missing ';'?"},
+        {"FoamFile\n{\n    version 2.0;\n    format ascii\n    class dictionary;\n    object x;\n}\n",
+         "test.dict:4: FoamFile header: entry 'format' has 2 excess tokens (word 'class'...), expected one word; "
+         "a missing ';'?"},
+        {"FoamFile\n{\n    version 2.0;\n    format ascii;\n    class dictionary;\n    object x\n}\n",
+         "test.dict:6: expected ';' after value of keyword 'object'"},
+        {"FoamFile { version abc; format ascii; object x; }\n",
+         "test.dict:1: FoamFile header: 'version' must be one number, found word 'abc'"},
+        {"FoamFile { format 1; object x; }\n", "test.dict:1: FoamFile header: 'format' must be one word, found number '1'"},
+        {"FoamFile\n{\n format binar;\n object x;\n}\n",
+         "test.dict:3: FoamFile header: format 'binar' is neither ascii nor binary"},
+        {"FoamFile\n{\n format ascii;\n class dictionary;\n}\n", "test.dict:1: FoamFile header: entry 'object' is missing"},
+        {"FoamFile { object x; }\n", "test.dict:1: FoamFile header: entry 'format' is missing"},
+        {"FoamFile { format ascii; class (a b); object x; }\n",
+         "test.dict:1: FoamFile header: 'class' must be one word, found list of 2 items"},
+        {"FoamFile { format ascii; object { a 1; } }\n",
+         "test.dict:1: FoamFile header: 'object' must be one word, found a sub-dictionary"},
+        {"FoamFile { format ascii; object x; arch \"LSB;label=16;scalar=64\"; }\n",
+         "test.dict:1: FoamFile header: arch \"LSB;label=16;scalar=64\": label= must be 32 or 64"},
+        {"FoamFile { format binary; object x; arch \"MSB;label=32;scalar=64\"; }\n",
+         "test.dict:1: FoamFile header: arch \"MSB;label=32;scalar=64\": big-endian binary files are not supported"},
+        {"a 1;\nFoamFile { format ascii; object x; }\n",
+         "test.dict:2: FoamFile header after other entries: it must come first, as OpenFOAM reads it"},
+        {"FoamFile 3;\n", "test.dict:1: FoamFile header must be a dictionary"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const char *msg = parse_error(bad[i].text);
+        EXPECT(strncmp(msg, bad[i].msg, strlen(bad[i].msg)) == 0, "case %zu: got '%s', expected '%s'", i, msg,
+               bad[i].msg);
+    }
+    /* accepted: no version or class (read by the Foundation's OpenFOAM),
+       quoted words, version 2, note and location as OpenFOAM leaves them,
+       a FoamFile sub-dictionary below the top level */
+    static const char *const good[] = {
+        "FoamFile { format ascii; object x; }\na 1;\n",
+        "FoamFile { version 2; format \"binary\"; class \"dictionary\"; object \"x\"; arch \"LSB;label=64;scalar=32\"; }\n",
+        "FoamFile { version 2.0; format ascii; class volScalarField; note \"a\" b; location \"0\" c; object p; }\n",
+        "a { FoamFile 3; }\n",
+    };
+    for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
+        const char *msg = parse_error(good[i]);
+        EXPECT(strcmp(msg, "(parsed without error)") == 0, "good case %zu refused: %s", i, msg);
+    }
+    /* an included file's header is checked too, and named with its line */
+    char *inc = scratch("badheader.inc"), *top = scratch("top.dict");
+    put_file(inc, "\nFoamFile { version 2.0 x; format ascii; object y; }\nb 2;\n");
+    put_file(top, "FoamFile { version 2.0; format ascii; object x; }\n#include \"badheader.inc\"\n");
+    Err e;
+    Dict *d = dict_read(top, &e);
+    EXPECT(!d, "bad header in an included file accepted");
+    CONTAINS(e.msg, "badheader.inc:2: FoamFile header: entry 'version' has 1 excess token");
+    CONTAINS(e.msg, "(included from ");
+    dict_free(d);
+}
+
+/* ---- size prefixes are checked by the parser, wherever a list is read ---- */
+
+TEST(list_sizes_everywhere)
+{
+    static const struct { const char *text, *msg; } bad[] = {
+        {"a 1;\nlist 3 ( 1 2 );\n", "test.dict:2: keyword 'list': list size 3 does not match the 2 items read"},
+        {"p nonuniform List<scalar> 3 (1 2);\n", "test.dict:1: p: list size 3 does not match the 2 items read"},
+        {"w List<word> 1 (a b);\n", "test.dict:1: w: list size 1 does not match the 2 items read"},
+        {"x ( List<label>\n2 (1 2 3) );\n", "test.dict:2: list size 2 does not match the 3 items read"},
+        {"x (3(1 2) 2(1 2));\n", "test.dict:1: list size 3 does not match the 2 items read"},
+        {"x 2((1 2) (3 4) (5 6));\n", "test.dict:1: list size 2 does not match the 3 items read"},
+        {"x\n(\n    2\n    (a b c)\n);\n", "test.dict:3: list size 2 does not match the 3 items read"},
+        {"3 (0 1)\n", "test.dict:1: list size 3 does not match the 2 items read"},
+        {"b 4 ( a { } c { } );\n", "test.dict:1: keyword 'b': list size 4 does not match the 4 items read (2 "
+                                   "name-dictionary pairs: the size counts the pairs)"},
+        {"4\n(\na { }\nc { }\n)\n", "test.dict:1: list size 4 does not match the 4 items read (2 name-dictionary "
+                                   "pairs: the size counts the pairs)"},
+        {"n 3;\nx $n (1 2);\n", "test.dict:2: keyword 'x': list size 3 does not match the 2 items read"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const char *msg = parse_error(bad[i].text);
+        EXPECT(strcmp(msg, bad[i].msg) == 0, "case %zu: got '%s', expected '%s'", i, msg, bad[i].msg);
+    }
+    Err e;
+    Dict *d = parse("x 2 (1 2);\narc 1 5 (0 1 0);\nl List<scalar> 2 (1 2);\nb 2 ( a { } c { } );\nz 0 ();\n"
+                    "e ( arc 0 1 (0.5 0 0) );\nt (3 (1 2));\n",
+                    &e);
+    EXPECT(d, "consistent sizes refused: %s", e.msg);
+    if (d) {
+        EXPECT(dict_set(d, "y", "3 (1 2)", &e) == -1, "dict_set accepted a wrong size");
+        CONTAINS(e.msg, "keyword 'y': list size 3 does not match the 2 items read");
+        EXPECT(dict_set(d, "y", "List<scalar> 2 (1 2)", &e) == 0, "dict_set: %s", e.msg);
+        /* written and read back: same text */
+        char *w1 = mem_strdup(write_text(d));
+        Dict *d2 = parse(w1, &e);
+        EXPECT(d2 && strcmp(write_text(d2), w1) == 0, "round trip: %s", d2 ? write_text(d2) : e.msg);
+        dict_free(d2);
+        free(w1);
+    }
+    dict_free(d);
+}
+
 /* ---- binary ---- */
 
 static void put_doubles(Buf *b, const double *v, size_t n) { buf_put(b, v, n * sizeof(double)); }
@@ -824,7 +930,7 @@ TEST(check_keys)
                                    {"writeInterval", "1", "interval"},
                                    {NULL, NULL, NULL}};
     Err e;
-    Dict *d = parse("FoamFile { version 2.0; }\napplication x;\nendTme 1;\n", &e);
+    Dict *d = parse("FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\napplication x;\nendTme 1;\n", &e);
     EXPECT(d && dict_check_keys(d, keys, &e) < 0, "typo found");
     EXPECT(strcmp(e.msg, "test.dict:3: unknown keyword 'endTme' in test.dict; did you mean 'endTime'?") == 0, "%s",
            e.msg);
@@ -970,6 +1076,8 @@ int main(void)
     RUN(includes);
     RUN(unsupported_directives);
     RUN(parse_errors_exact);
+    RUN(header_checks);
+    RUN(list_sizes_everywhere);
     RUN(binary_lists);
     RUN(gzip_read);
     RUN(round_trip);
