@@ -336,7 +336,7 @@ static int parse_tri(Parse *p, const Dict *d, int is_cad, const Xf *xf, GeoNode 
     n->tri = MEM_NEW(TriSurf, 1);
     Err e2 = {0};
     int rc;
-    if (is_cad) {
+    if (is_cad && !surface_obj_name(path)) {   /* gmsh reads no OBJ: ours does */
         n->cad = cad_open(path, size, n->tri, &e2);
         rc = n->cad ? 0 : -1;
     } else {

@@ -27,7 +27,7 @@ static int ends_with(const char *name, size_t n, const char *suffix)
     return 1;
 }
 
-static int obj_name(const char *name)
+int surface_obj_name(const char *name)
 {
     size_t n = strlen(name);
     if (ends_with(name, n, ".gz")) n -= 3;
@@ -37,7 +37,7 @@ static int obj_name(const char *name)
 SurfaceFormat surface_format(const char *data, size_t n, const char *name)
 {
     if (stl_is_binary(data, n)) return SURFACE_STL;
-    if (name && obj_name(name)) return SURFACE_OBJ;
+    if (name && surface_obj_name(name)) return SURFACE_OBJ;
     if (obj_sniff(data, n)) return SURFACE_OBJ;
     return SURFACE_STL;
 }

@@ -25,6 +25,8 @@
 
 typedef enum { SURFACE_STL, SURFACE_OBJ } SurfaceFormat;
 
+/* 1 when name ends in ".obj" or ".obj.gz" (any case): rule 2. */
+int surface_obj_name(const char *name);
 /* The format the rule above picks for data read from name. */
 SurfaceFormat surface_format(const char *data, size_t n, const char *name);
 /* Parses data held in memory (name for messages and rule 1). */

@@ -413,12 +413,13 @@ TEST(format_choice)
     buf_free(&b);
 }
 
-/* The geometry layer takes OBJ files under shape surface, obj and stl. */
+/* The geometry layer takes OBJ files under shape surface, obj and stl,
+   and under cad too (gmsh reads no OBJ; geometry.c hands it to ours). */
 TEST(geometry_shapes)
 {
     char *p = data_path("obj/lprism.obj");
-    static const char *const kinds[] = {"surface", "obj", "stl"};
-    for (int k = 0; k < 3; k++) {
+    static const char *const kinds[] = {"surface", "obj", "stl", "cad"};
+    for (int k = 0; k < 4; k++) {
         char text[1024];
         snprintf(text, sizeof text,
                  "surfaces { l { flow outside; shape %s; file \"%s\"; scale 0.25; translate (0.2 0.2 0.3); } }",
