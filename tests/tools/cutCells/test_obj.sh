@@ -142,7 +142,7 @@ if "$BIN/cutCells" -case bad >bad/log 2>bad/err; then
     fail cutCells_obj_bad_index "a face naming vertex 9 of 8 was accepted"
 else
     grep -q 'geometryDict:4: .*bad.obj:36: vertex index 9 out of range: the file has 8 vertices' bad/err &&
-        pass cutCells_obj_bad_index "$(head -c 200 bad/err)" || fail cutCells_obj_bad_index "message: $(cat bad/err)"
+        pass cutCells_obj_bad_index "$(head -n 1 bad/err)" || fail cutCells_obj_bad_index "message: $(cat bad/err)"
 fi
 mkcase open 8 "cube { shape obj; file \"constant/triSurface/open.obj\"; }"
 grep -v '^f 3 4 8 7$' "$obj/cube.obj" >open/constant/triSurface/open.obj
