@@ -34,8 +34,6 @@
 
 #include <limits.h>
 #include <math.h>
-#include <stdint.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -300,11 +298,13 @@ static void group(Obj *O)
     O->tag = -1;
 }
 
-static const char *const ignored[] = {"l",        "p",      "s",         "mtllib",    "usemtl",     "mg",
-                                      "lod",      "bevel",  "c_interp",  "d_interp",  "usemap",     "maplib",
-                                      "shadow_obj", "trace_obj", "ctech", "stech", NULL};
-static const char *const freeform[] = {"cstype", "deg", "bmat", "step", "curv", "curv2", "surf",
-                                       "parm",   "trim", "hole", "scrv", "sp",   "end",   "con", NULL};
+/* Statements that carry nothing a solid needs (display attributes, lines,
+   points), and free-form geometry, which would need evaluating. */
+static const char *const ignored[] = {"l",        "p",      "s",      "mtllib",     "usemtl",    "mg",
+                                      "lod",      "bevel",  "usemap", "maplib",     "c_interp",  "d_interp",
+                                      "ctech",    "stech",  "shadow_obj", "trace_obj", NULL};
+static const char *const freeform[] = {"cstype", "deg",  "bmat", "step", "curv", "curv2", "surf",
+                                       "parm",   "trim", "hole", "scrv", "sp",   "end",   "con",  NULL};
 
 /* One statement (a line and its continuations), consumed whole. */
 static int statement(Obj *O, Err *e)
