@@ -133,6 +133,13 @@ typedef struct Work {
     Cand *cand;
     int ncand, cand_cap;
     int *order;             /* candidate roots in order of preference */
+    double *fcc;            /* 3 per cell: OpenFOAM centre of a cluster of 2+ cells, at roots, */
+    char *fcc_ok;           /* valid where fcc_ok (unite and dissolve clear it) */
+    double *cc0;            /* 3 per cell: OpenFOAM centre of the input cell, */
+    char *cc0_ok;           /* valid where cc0_ok (computed on first use) */
+    double *sc;             /* scratch: area vector and centre (6) per face of a union */
+    signed char *sg;        /* and +1 where the face points out of it, -1 in */
+    size_t sc_cap, sg_cap;
     int norder, order_cap;
 } Work;
 
@@ -166,6 +173,7 @@ static void unite(Work *w, int a, int b)
     int t = w->next[a];
     w->next[a] = w->next[b];
     w->next[b] = t;
+    w->fcc_ok[a] = 0;
 }
 
 /* Face f's area vector and centroid (6 values), computed on first use
@@ -181,25 +189,19 @@ static const double *face_geo(Work *w, int f)
     mem_grow((void **)&w->fgeo, &w->slot_cap, 6 * (w->nslot + 1), sizeof(double));
     double *g = w->fgeo + 6 * w->nslot++;
     w->fslot[f] = (int)w->nslot;
-    geom_face(m->points, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], g, g + 3);
+    quality_foam_face(m->points, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], g, g + 3);
     return g;
 }
 
 /* Skewness of face f (quality.h's, OpenFOAM's) between cell centres cown
-   and cnei, or of a boundary face when cnei is NULL: the quality
-   functions read a mesh's per-face arrays, so they get a one-face view
-   of f with its geometry. */
+   and cnei, or of a boundary face when cnei is NULL. */
 static double face_skew(Work *w, int f, const double *cown, const double *cnei)
 {
     const Mesh *m = w->m;
     double SC[6];
     memcpy(SC, face_geo(w, f), sizeof SC);
-    int off[2] = {m->face_off[f], m->face_off[f + 1]};
-    Mesh one = *m;
-    one.face_off = off;
-    one.face_area = SC;
-    one.face_centre = SC + 3;
-    return cnei ? quality_skewness(&one, 0, cown, cnei) : quality_boundary_skewness(&one, 0, cown);
+    return quality_face_skew(m->points, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], SC,
+                             SC + 3, cown, cnei);
 }
 
 /* Parent Cartesian cell of c: lower and upper corner; -1 without one. */
@@ -357,43 +359,187 @@ static void rank(Work *w, int allow_slave)
     }
 }
 
-/* Whether the union of clusters r and t is a sound cell: every face's
-   pyramid on the union's centroid positive, i.e. the centroid on the
-   inner side of every face (OpenFOAM's face-pyramid check; a non-convex
-   union can break it).  Empty faces are left out: a merged 2-D cell gets
-   one joined empty face per side (assemble), whose pyramid is positive. */
-static int sound_union(Work *w, int r, int t)
+/* ---- unions of clusters ----
+   A union of up to SET_MAX clusters is judged on OpenFOAM's geometry
+   (quality.h): its centre is OpenFOAM's cell centre of its faces, those
+   of the members except the ones shared inside it (the faces the merged
+   cell will have; a 2-D union keeps its members' empty faces, where the
+   output joins them into one polygon per side: the same pyramid sums
+   whenever the joined polygon is star-shaped about its point average),
+   and every face is measured as checkMesh measures it.  The centre of a
+   cluster is kept at its root until the cluster changes (fcc), the
+   centre of an input cell for good (cc0). */
+
+enum { SET_MAX = 3 };
+
+typedef struct Set {
+    int root[SET_MAX], n;
+} Set;
+
+static int in_set(const Set *s, int r)
+{
+    for (int i = 0; i < s->n; i++)
+        if (s->root[i] == r) return 1;
+    return 0;
+}
+
+static void set_make(Set *s, int n, const int *roots)
+{
+    s->n = n;
+    for (int i = 0; i < n; i++) s->root[i] = roots[i];
+}
+
+/* Appends face f (its area vector and centre) to the scratch of a
+   union's faces, with its sign. */
+static void push_face(Work *w, size_t *nf, int f, int out)
+{
+    mem_grow((void **)&w->sc, &w->sc_cap, 6 * (*nf + 1), sizeof(double));
+    mem_grow((void **)&w->sg, &w->sg_cap, *nf + 1, 1);
+    memcpy(w->sc + 6 * *nf, face_geo(w, f), 6 * sizeof(double));
+    w->sg[(*nf)++] = (signed char)(out ? 1 : -1);
+}
+
+/* OpenFOAM's centre of input cell c alone (the cut grid's): a whole
+   Cartesian cell's is its box centre (to round-off), without its faces. */
+static const double *cell_centre0(Work *w, int c)
 {
     const Mesh *m = w->m;
-    double V = w->cvol[r] + w->cvol[t], C[3];
-    for (int k = 0; k < 3; k++) C[k] = (w->cmom[3 * (size_t)r + k] + w->cmom[3 * (size_t)t + k]) / V;
-    for (int pass = 0; pass < 2; pass++) {
-        int start = pass ? t : r, c = start;
+    double *C = w->cc0 + 3 * (size_t)c;
+    if (w->cc0_ok[c]) return C;
+    w->cc0_ok[c] = 1;
+    double lo[3], hi[3];
+    if (w->reg[c] && parent_box(m, c, lo, hi) == 0) {
+        for (int k = 0; k < 3; k++) C[k] = 0.5 * (lo[k] + hi[k]);
+        return C;
+    }
+    size_t nf = 0;
+    for (int q = m->cell_off[c]; q < m->cell_off[c + 1]; q++)
+        push_face(w, &nf, m->cell_faces[q], m->owner[m->cell_faces[q]] == c);
+    quality_foam_cell((int)nf, w->sc, w->sg, C);
+    return C;
+}
+
+/* OpenFOAM's centre of the union s from its faces. */
+static void union_centre(Work *w, const Set *s, double C[3])
+{
+    const Mesh *m = w->m;
+    if (s->n == 1 && w->size[s->root[0]] == 1) {
+        memcpy(C, cell_centre0(w, s->root[0]), 3 * sizeof(double));
+        return;
+    }
+    size_t nf = 0;
+    for (int i = 0; i < s->n; i++) {
+        int c = s->root[i];
         do {
-            for (int i = m->cell_off[c]; i < m->cell_off[c + 1]; i++) {
-                int f = m->cell_faces[i], own = m->owner[f] == c;
-                if (f < m->ninternal) {
-                    int ro = find(w, own ? m->neighbour[f] : m->owner[f]);
-                    if (ro == r || ro == t) continue;
-                } else {
-                    int p = mesh_face_patch(m, f);
-                    if (p >= 0 && w->empty_patch[p]) continue;
-                }
-                const double *S = face_geo(w, f), *Cf = S + 3;
-                double d[3] = {Cf[0] - C[0], Cf[1] - C[1], Cf[2] - C[2]};
-                if (!((own ? 1 : -1) * geom_dot(d, S) > 0)) return 0;
+            for (int q = m->cell_off[c]; q < m->cell_off[c + 1]; q++) {
+                int f = m->cell_faces[q], own = m->owner[f] == c;
+                if (f < m->ninternal && in_set(s, find(w, own ? m->neighbour[f] : m->owner[f]))) continue;
+                push_face(w, &nf, f, own);
             }
             c = w->next[c];
-        } while (c != start);
+        } while (c != s->root[i]);
     }
-    return 1;
+    quality_foam_cell((int)nf, w->sc, w->sg, C);
+}
+
+/* OpenFOAM's centre of cluster r (a root). */
+static const double *root_centre(Work *w, int r)
+{
+    if (w->size[r] == 1) return cell_centre0(w, r);
+    if (!w->fcc_ok[r]) {
+        union_centre(w, &(Set){{r}, 1}, w->fcc + 3 * (size_t)r);
+        w->fcc_ok[r] = 1;
+    }
+    return w->fcc + 3 * (size_t)r;
+}
+
+/* Skewness of face f in the cut grid (between its input cells). */
+static double cut_skew(Work *w, int f)
+{
+    const Mesh *m = w->m;
+    const double *Co = cell_centre0(w, m->owner[f]);
+    double C[3];
+    memcpy(C, Co, sizeof C);
+    return face_skew(w, f, C, f < m->ninternal ? cell_centre0(w, m->neighbour[f]) : NULL);
+}
+
+/* What set_eval checks besides the skewness. */
+enum {
+    EV_SOUND = 1,   /* every face pyramid on the centre positive (checkMesh's face pyramids) */
+    EV_CLEAN = 2,   /* and nothing checkMesh fails that the cut grid passed: no face with
+                       skewness above the limit and above its cut-grid value, no internal
+                       face at 90 degrees or more, aspect ratio at most 1000 */
+    EV_NOSKEW = 4   /* the checks only: no skewness */
+};
+
+#define ORTHO_MIN 1e-12   /* cos of the non-orthogonality: checkMesh fails <= 1e-15 */
+
+/* Maximum skewness over the faces of the union s, or -1 when a check of
+   `what` fails.  Empty faces are left out (a merged 2-D cell's joined
+   empty face has its centre over the cell's, skewness 0), and so are
+   faces of cyclic patches (measured against a partner cell the merge does
+   not see).  Stops at the first face reaching cut (the caller's best so
+   far), returning a value >= cut. */
+static double set_eval(Work *w, const Set *s, int what, double cut)
+{
+    const Mesh *m = w->m;
+    double smax = 0, C[3], mag[3] = {0, 0, 0}, V = 0, limit = w->o->max_skewness;
+    if (s->n == 1) memcpy(C, root_centre(w, s->root[0]), sizeof C);
+    else union_centre(w, s, C);
+    for (int i = 0; i < s->n; i++) {
+        int c = s->root[i];
+        V += w->cvol[c];
+        do {
+            for (int q = m->cell_off[c]; q < m->cell_off[c + 1]; q++) {
+                int f = m->cell_faces[q], own = m->owner[f] == c, ro = -1;
+                if (f < m->ninternal) {
+                    ro = find(w, own ? m->neighbour[f] : m->owner[f]);
+                    if (in_set(s, ro)) continue;
+                }
+                double SC[6];
+                memcpy(SC, face_geo(w, f), sizeof SC);
+                for (int k = 0; k < 3; k++) mag[k] += fabs(SC[k]);
+                if (f >= m->ninternal) {
+                    int p = mesh_face_patch(m, f);
+                    if (p >= 0 && w->skip_patch[p]) continue;
+                }
+                double d[3] = {SC[3] - C[0], SC[4] - C[1], SC[5] - C[2]}, sgn = own ? 1 : -1;
+                if (what & (EV_SOUND | EV_CLEAN) && !(sgn * geom_dot(d, SC) > 0)) return -1;
+                double Co[3];
+                if (ro >= 0) {
+                    memcpy(Co, root_centre(w, ro), sizeof Co);
+                    for (int k = 0; k < 3; k++) d[k] = sgn * (Co[k] - C[k]);
+                    if (what & EV_CLEAN && !(quality_ortho(d, SC) > ORTHO_MIN)) return -1;
+                }
+                if (what & EV_NOSKEW) continue;
+                double sk = ro < 0 ? face_skew(w, f, C, NULL) : own ? face_skew(w, f, C, Co) : face_skew(w, f, Co, C);
+                if (what & EV_CLEAN && limit > 0 && sk > limit && sk > cut_skew(w, f)) return -1;
+                if (sk > smax) smax = sk;
+                if (smax >= cut) return smax;
+            }
+            c = w->next[c];
+        } while (c != s->root[i]);
+    }
+    if (what & EV_CLEAN && quality_aspect(mag, V, w->empty) > QUALITY_ASPECT_HIGH) return -1;
+    return smax;
+}
+
+/* Whether the union of clusters r and t is a sound cell: every face's
+   pyramid on the union's centre positive, i.e. the centre on the inner
+   side of every face (OpenFOAM's face-pyramid check; a non-convex union
+   can break it). */
+static int sound_union(Work *w, int r, int t)
+{
+    Set s;
+    set_make(&s, 2, (int[2]){r, t});
+    return set_eval(w, &s, EV_SOUND | EV_NOSKEW, HUGE_VAL) >= 0;
 }
 
 /* The master cluster root for slave cluster r, or -1.  Candidates come
    in four groups: non-slaves in the merge directions, then slaves there,
    then any other neighbour, non-slaves first.  The first candidate, in
    that order, whose union with r is sound wins. */
-static int choose(Work *w, int r)
+static void candidates(Work *w, int r)
 {
     int axis[6], side[6];
     int nd = directions(w, r, axis, side);
@@ -406,6 +552,11 @@ static int choose(Work *w, int r)
     collect(w, r, -1, 0);
     rank(w, 0);
     rank(w, 1);
+}
+
+static int choose(Work *w, int r)
+{
+    candidates(w, r);
     for (int i = 0; i < w->norder; i++)
         if (sound_union(w, r, w->order[i])) return w->order[i];
     return -1;
@@ -472,83 +623,9 @@ static int merge_rounds(Work *w, char *stuck)
    0), and so are faces of cyclic patches (measured against a partner cell
    the merge does not see). */
 
-enum { SET_MAX = 3 };
-
-typedef struct Set {
-    int root[SET_MAX], n;
-    double C[3];   /* centroid of the union */
-} Set;
-
-static int in_set(const Set *s, int r)
-{
-    for (int i = 0; i < s->n; i++)
-        if (s->root[i] == r) return 1;
-    return 0;
-}
-
-static void set_make(const Work *w, Set *s, int n, const int *roots)
-{
-    double V = 0, M[3] = {0, 0, 0};
-    s->n = n;
-    for (int i = 0; i < n; i++) {
-        s->root[i] = roots[i];
-        V += w->cvol[roots[i]];
-        for (int k = 0; k < 3; k++) M[k] += w->cmom[3 * (size_t)roots[i] + k];
-    }
-    for (int k = 0; k < 3; k++) s->C[k] = M[k] / V;
-}
-
-static void centroid(const Work *w, int r, double C[3])
-{
-    for (int k = 0; k < 3; k++) C[k] = w->cmom[3 * (size_t)r + k] / w->cvol[r];
-}
-
-/* Maximum skewness over the faces of the union s; with sound, returns -1
-   instead when a face pyramid on the union's centroid is not positive
-   (sound_union's test).  Stops at the first face reaching cut (the
-   caller's best so far), returning a value >= cut. */
-static double set_skew(Work *w, const Set *s, int sound, double cut)
-{
-    const Mesh *m = w->m;
-    double smax = 0, Co[3];
-    for (int i = 0; i < s->n; i++) {
-        int c = s->root[i];
-        do {
-            for (int q = m->cell_off[c]; q < m->cell_off[c + 1]; q++) {
-                int f = m->cell_faces[q], own = m->owner[f] == c, ro = -1;
-                if (f < m->ninternal) {
-                    ro = find(w, own ? m->neighbour[f] : m->owner[f]);
-                    if (in_set(s, ro)) continue;
-                } else {
-                    int p = mesh_face_patch(m, f);
-                    if (p >= 0 && w->skip_patch[p]) continue;
-                }
-                if (sound) {   /* the cheap test first: most unions that fail it fail early */
-                    const double *S = face_geo(w, f), *Cf = S + 3;
-                    double d[3] = {Cf[0] - s->C[0], Cf[1] - s->C[1], Cf[2] - s->C[2]};
-                    if (!((own ? 1 : -1) * geom_dot(d, S) > 0)) return -1;
-                }
-                double sk;
-                if (ro >= 0) {
-                    centroid(w, ro, Co);
-                    sk = own ? face_skew(w, f, s->C, Co) : face_skew(w, f, Co, s->C);
-                } else {
-                    sk = face_skew(w, f, s->C, NULL);
-                }
-                if (sk > smax) smax = sk;
-                if (smax >= cut) return smax;
-            }
-            c = w->next[c];
-        } while (c != s->root[i]);
-    }
-    return smax;
-}
-
 static double cluster_skew(Work *w, int r)
 {
-    Set s;
-    set_make(w, &s, 1, &r);
-    return set_skew(w, &s, 0, HUGE_VAL);
+    return set_eval(w, &(Set){{r}, 1}, 0, HUGE_VAL);
 }
 
 /* Adds the neighbour clusters of the union s to w->cand. */
@@ -577,7 +654,7 @@ static void collect_set(Work *w, const Set *s)
 static int choose_skew(Work *w, int r, double cur, Set *bs, double *best)
 {
     Set s;
-    set_make(w, &s, 1, &r);
+    set_make(&s, 1, &r);
     collect_set(w, &s);
     int n1 = w->ncand;
     int *first = mem_alloc(sizeof(int) * ((size_t)n1 + 1));
@@ -585,18 +662,18 @@ static int choose_skew(Work *w, int r, double cur, Set *bs, double *best)
     *best = HUGE_VAL;
     for (int i = 0; i < n1; i++) {
         int two[2] = {r, first[i]};
-        set_make(w, &s, 2, two);
-        double sk = set_skew(w, &s, 1, *best);
+        set_make(&s, 2, two);
+        double sk = set_eval(w, &s, EV_SOUND, *best);
         if (sk >= 0 && sk < *best) *best = sk, *bs = s;
     }
     for (int i = 0; i < n1 && !(*best < cur); i++) {
         int three[3] = {r, first[i], -1};
-        set_make(w, &s, 2, three);
+        set_make(&s, 2, three);
         collect_set(w, &s);
         for (int k = 0; k < w->ncand; k++) {
             three[2] = w->cand[k].root;
-            set_make(w, &s, 3, three);
-            double sk = set_skew(w, &s, 1, *best);
+            set_make(&s, 3, three);
+            double sk = set_eval(w, &s, EV_SOUND, *best);
             if (sk >= 0 && sk < *best) *best = sk, *bs = s;
         }
     }
@@ -660,7 +737,7 @@ static int changed_since(Work *w, int r, const int *seen, const int *tstamp)
 {
     if (!seen[r] || tstamp[r] >= seen[r]) return 1;
     Set s;
-    set_make(w, &s, 1, &r);
+    set_make(&s, 1, &r);
     collect_set(w, &s);
     for (int k = 0; k < w->ncand; k++)
         if (tstamp[w->cand[k].root] >= seen[r]) return 1;
@@ -701,7 +778,7 @@ static int skew_rounds(Work *w, double limit, int maxr, SlaveKey *bad, int nb)
             for (int k = 1; k < bs.n; k++) unite(w, bs.root[0], bs.root[k]);
             nmerge += bs.n - 1;
             epoch++;
-            set_make(w, &bs, 1, (int[1]){find(w, r)});
+            set_make(&bs, 1, (int[1]){find(w, r)});
             collect_set(w, &bs);
             tstamp[bs.root[0]] = epoch;
             for (int k = 0; k < w->ncand; k++) tstamp[w->cand[k].root] = epoch;
@@ -857,6 +934,11 @@ static void work_init(Work *w, Mesh *g, const MergeOpts *o)
     w->reg = mem_alloc((size_t)nc);
     w->empty_patch = MEM_NEW(char, (size_t)m->npatches);
     w->skip_patch = MEM_NEW(char, (size_t)m->npatches);
+    /* written near cut cells only: the calloc'd pages elsewhere are never faulted in */
+    w->fcc = MEM_NEW(double, 3 * (size_t)nc);
+    w->fcc_ok = MEM_NEW(char, (size_t)nc);
+    w->cc0 = MEM_NEW(double, 3 * (size_t)nc);
+    w->cc0_ok = MEM_NEW(char, (size_t)nc);
     for (int p = 0; p < m->npatches; p++) {
         const Patch *pa = &m->patches[p];
         w->empty_patch[p] = !strcmp(pa->type, "empty");
@@ -895,6 +977,119 @@ static void work_free(Work *w)
     free(w->reg);
     free(w->cand);
     free(w->order);
+    free(w->fcc);
+    free(w->fcc_ok);
+    free(w->cc0);
+    free(w->cc0_ok);
+    free(w->sc);
+    free(w->sg);
+}
+
+/* ---- repair ----
+   The volume rounds and the quality pass judge a merge by the faces of
+   the union, but a later merge or a skewed union the quality pass could
+   not mend can leave a cluster that checkMesh fails where the cut grid
+   passed (set_eval's EV_CLEAN: a face skewness above maxSkewness that
+   the cut grid did not have, a face pyramid or non-orthogonality error,
+   an aspect ratio above 1000).  Such a cluster is dissolved into its
+   input cells, which restores the cut grid's faces there; that changes
+   the faces its neighbours share with it, so the clusters are examined
+   again until none fails (each pass dissolves at least one cluster, or
+   ends the loop).  Then the cells below the volume bound merge again in
+   rounds as in merge_rounds, over the same candidates in the same order,
+   but a union is taken only when it is clean (EV_CLEAN); when no union
+   with one neighbour is, the clean union with two neighbours of lowest
+   maximum skewness is taken.  A clean union changes only its own faces,
+   all of which it checked, so the grid stays clean: merging never adds a
+   checkMesh failure (with maxSkewness <= 4).  Cells no clean union takes
+   stay small and are reported. */
+
+/* Splits cluster r back into its input cells. */
+static void dissolve(Work *w, int r, CellScratch *cs)
+{
+    int c = r;
+    do {
+        int nx = w->next[c];
+        w->uf[c] = w->next[c] = w->big[c] = c;
+        w->size[c] = 1;
+        w->fcc_ok[c] = 0;
+        cell_init(w, c, cs);
+        c = nx;
+    } while (c != r);
+}
+
+/* Dissolves the clusters that are not clean; returns their number. */
+static int repair(Work *w)
+{
+    int nc = w->m->ncells, ndis = 0, again = 1;
+    CellScratch cs = {0};
+    while (again) {
+        again = 0;
+        for (int c = 0; c < nc; c++)
+            if (find(w, c) == c && w->size[c] > 1 && set_eval(w, &(Set){{c}, 1}, EV_CLEAN, HUGE_VAL) < 0) {
+                dissolve(w, c, &cs);
+                ndis++;
+                again = 1;
+            }
+    }
+    scratch_free(&cs);
+    return ndis;
+}
+
+/* The clean union for slave cluster r (see above) into *bs; 0 if none. */
+static int choose_clean(Work *w, int r, Set *bs)
+{
+    candidates(w, r);
+    int n1 = w->norder;
+    int *first = mem_alloc(sizeof(int) * ((size_t)n1 + 1));
+    memcpy(first, w->order, sizeof(int) * (size_t)n1);
+    Set s;
+    double best = HUGE_VAL;
+    for (int i = 0; i < n1 && best == HUGE_VAL; i++) {
+        set_make(&s, 2, (int[2]){r, first[i]});
+        if (set_eval(w, &s, EV_CLEAN, HUGE_VAL) >= 0) *bs = s, best = 0;
+    }
+    for (int i = 0; i < n1 && best == HUGE_VAL; i++) {
+        int three[3] = {r, first[i], -1};
+        set_make(&s, 2, three);
+        collect_set(w, &s);
+        for (int k = 0; k < w->ncand; k++) {
+            three[2] = w->cand[k].root;
+            set_make(&s, 3, three);
+            double sk = set_eval(w, &s, EV_CLEAN, HUGE_VAL);
+            if (sk >= 0 && sk < best) *bs = s, best = sk;
+        }
+    }
+    free(first);
+    return best < HUGE_VAL;
+}
+
+/* The volume rounds again with clean unions only (see above); stuck[r]
+   as merge_rounds.  Returns the merges made. */
+static int clean_rounds(Work *w, char *stuck)
+{
+    int nc = w->m->ncells, nmerged = 0;
+    SlaveKey *sl = MEM_NEW(SlaveKey, (size_t)nc);
+    for (int round = 0; round < w->o->max_iter; round++) {
+        int ns = 0, nmerge = 0;
+        for (int c = 0; c < nc; c++)
+            if (find(w, c) == c && below(w, c)) sl[ns++] = (SlaveKey){w->cvol[c] / w->vcart[w->big[c]], c};
+        qsort(sl, (size_t)ns, sizeof *sl, cmp_slave);
+        for (int i = 0; i < ns; i++) {
+            int r = sl[i].root;
+            Set bs = {.n = 0};
+            if (find(w, r) != r || !below(w, r)) continue;
+            stuck[r] = !choose_clean(w, r, &bs);
+            if (stuck[r]) continue;
+            for (int k = 1; k < bs.n; k++) unite(w, bs.root[0], bs.root[k]);
+            stuck[find(w, r)] = 0;
+            nmerge += bs.n - 1;
+        }
+        nmerged += nmerge;
+        if (!nmerge) break;
+    }
+    free(sl);
+    return nmerged;
 }
 
 /* ---- empty faces of merged cells ----
@@ -1322,11 +1517,16 @@ int merge_mesh(const Mesh *in, const MergeOpts *o, Mesh *out, MergeStats *st, Er
     stats_before(&w, st);
     int nc = g.ncells;
     char *stuck = MEM_NEW(char, (size_t)nc);
-    st->niter = merge_rounds(&w, stuck);
     SlaveKey *bad = mem_alloc(sizeof(SlaveKey) * (size_t)nc);
+    bad_clusters(&w, 0, bad, &st->skew_max_cut);
+    st->niter = merge_rounds(&w, stuck);
     int nbad = bad_clusters(&w, o->max_skewness, bad, &st->skew_max_before);
     st->nskew_merged = skew_rounds(&w, o->max_skewness, o->max_iter, bad, nbad);
     free(bad);
+    if (o->max_skewness > 0) {
+        st->nundone = repair(&w);
+        if (st->nundone) st->nclean_merged = clean_rounds(&w, stuck);
+    }
 
     int *newid = MEM_NEW(int, (size_t)nc), *root = MEM_NEW(int, (size_t)nc);
     for (int c = 0; c < nc; c++) newid[c] = -1;

@@ -65,7 +65,10 @@ typedef struct MergeStats {
     int *unresolved;          /* their output cell numbers */
     int *reason;              /* MERGE_* for each */
     int nskew_merged;         /* merges made by the quality pass */
-    double skew_max_before;   /* max face skewness after the volume rounds */
+    int nundone;              /* clusters the repair dissolved */
+    int nclean_merged;        /* merges made after the repair */
+    double skew_max_cut;      /* max face skewness of the input (OpenFOAM's, quality.h) */
+    double skew_max_before;   /* after the volume rounds */
     double skew_max_after;    /* and in the output */
 } MergeStats;
 

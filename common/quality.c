@@ -19,6 +19,7 @@
 */
 #include "quality.h"
 #include "geom.h"
+#include "mem.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -26,6 +27,7 @@
 #include <string.h>
 
 #define ROOTVSMALL 1e-150
+#define VSMALL 1e-300
 #define PARENT_TOL 1e-9
 #define RAD2DEG (180.0 / 3.14159265358979323846)
 
@@ -41,44 +43,146 @@ double quality_ortho(const double d[3], const double S[3])
     return geom_dot(d, S) / (geom_norm(d) * geom_norm(S) + ROOTVSMALL);
 }
 
-/* OpenFOAM's normalised skewness for face f, given its d vector and the
-   vector Cpf from the owner centre to the face centre; fd0 is the lower
-   bound of the normalising distance (0.2|d| inside, 0.4|d| on the boundary). */
-static double skew(const Mesh *m, int f, const double Cpf[3], const double d[3], double fd0)
+void quality_foam_face(const double *pts, const int *idx, int n, double S[3], double C[3])
 {
-    const double *S = m->face_area + 3 * (size_t)f, *Cf = m->face_centre + 3 * (size_t)f;
+    if (n == 3) {
+        const double *a = pts + 3 * (size_t)idx[0], *b = pts + 3 * (size_t)idx[1], *c = pts + 3 * (size_t)idx[2];
+        double u[3], v[3];
+        sub3(b, a, u);
+        sub3(c, a, v);
+        geom_cross(u, v, S);
+        for (int k = 0; k < 3; k++) {
+            S[k] *= 0.5;
+            C[k] = (a[k] + b[k] + c[k]) / 3.0;
+        }
+        return;
+    }
+    double m[3] = {0, 0, 0};
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) m[k] += pts[3 * (size_t)idx[i] + k];
+    for (int k = 0; k < 3; k++) m[k] /= n;
+    /* relative to m: the weights and the sum are OpenFOAM's, the digits
+       are kept when the face lies far from the origin */
+    double sumN[3] = {0, 0, 0}, sumA = 0, sumAc[3] = {0, 0, 0};
+    for (int i = 0; i < n; i++) {
+        double u[3], v[3], t[3];
+        sub3(pts + 3 * (size_t)idx[i], m, u);
+        sub3(pts + 3 * (size_t)idx[(i + 1) % n], m, v);
+        geom_cross(u, v, t);
+        double a = geom_norm(t);
+        for (int k = 0; k < 3; k++) {
+            sumN[k] += t[k];
+            sumAc[k] += a * (u[k] + v[k]);
+        }
+        sumA += a;
+    }
+    for (int k = 0; k < 3; k++) {
+        S[k] = sumA < ROOTVSMALL ? 0 : 0.5 * sumN[k];
+        C[k] = sumA < ROOTVSMALL ? m[k] : m[k] + sumAc[k] / (3 * sumA);
+    }
+}
+
+void quality_foam_cell(int nf, const double *SC, const signed char *sgn, double cc[3])
+{
+    double est[3] = {0, 0, 0}, v = 0, s[3] = {0, 0, 0};
+    for (int i = 0; i < nf; i++)
+        for (int k = 0; k < 3; k++) est[k] += SC[6 * i + 3 + k];
+    for (int k = 0; k < 3; k++) est[k] /= nf > 0 ? nf : 1;
+    for (int i = 0; i < nf; i++) {
+        const double *S = SC + 6 * i, *C = S + 3;
+        double d[3];
+        sub3(C, est, d);
+        double p = sgn[i] * geom_dot(S, d);   /* 3 x the pyramid's volume */
+        v += p;
+        for (int k = 0; k < 3; k++) s[k] += p * 0.75 * d[k];   /* pyramid centre - est = 3/4 d */
+    }
+    for (int k = 0; k < 3; k++) cc[k] = fabs(v) > VSMALL ? est[k] + s[k] / v : est[k];
+}
+
+void quality_foam_geometry(const Mesh *m, double *fS, double *fC, double *cc)
+{
+    int nc = m->ncells;
+    int *nface = MEM_NEW(int, (size_t)nc + 1);
+    double *est = MEM_NEW(double, 3 * (size_t)nc + 1), *vol = MEM_NEW(double, (size_t)nc + 1);
+    for (int f = 0; f < m->nfaces; f++) {
+        quality_foam_face(m->points, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f],
+                          fS + 3 * (size_t)f, fC + 3 * (size_t)f);
+        for (int side = 0; side < (f < m->ninternal ? 2 : 1); side++) {
+            int c = side ? m->neighbour[f] : m->owner[f];
+            nface[c]++;
+            for (int k = 0; k < 3; k++) est[3 * (size_t)c + k] += fC[3 * (size_t)f + k];
+        }
+    }
+    for (int c = 0; c < nc; c++)
+        for (int k = 0; k < 3; k++) {
+            est[3 * (size_t)c + k] /= nface[c] ? nface[c] : 1;
+            cc[3 * (size_t)c + k] = 0;
+        }
+    for (int f = 0; f < m->nfaces; f++)
+        for (int side = 0; side < (f < m->ninternal ? 2 : 1); side++) {
+            int c = side ? m->neighbour[f] : m->owner[f];
+            double d[3];
+            sub3(fC + 3 * (size_t)f, est + 3 * (size_t)c, d);
+            double p = (side ? -1 : 1) * geom_dot(fS + 3 * (size_t)f, d);
+            vol[c] += p;
+            for (int k = 0; k < 3; k++) cc[3 * (size_t)c + k] += p * 0.75 * d[k];
+        }
+    for (int c = 0; c < nc; c++)
+        for (int k = 0; k < 3; k++) {
+            double e = est[3 * (size_t)c + k];
+            cc[3 * (size_t)c + k] = fabs(vol[c]) > VSMALL ? e + cc[3 * (size_t)c + k] / vol[c] : e;
+        }
+    free(nface);
+    free(est);
+    free(vol);
+}
+
+/* OpenFOAM's normalised skewness of the face (points idx[0..n-1], area
+   vector S, centre Cf), given its d vector and the vector Cpf from the
+   owner centre to the face centre; fd0 is the lower bound of the
+   normalising distance (0.2|d| inside, 0.4|d| on the boundary). */
+static double skew(const double *pts, const int *idx, int n, const double S[3], const double Cf[3],
+                   const double Cpf[3], const double d[3], double fd0)
+{
     double r = geom_dot(S, Cpf) / (geom_dot(S, d) + ROOTVSMALL), sv[3];
     for (int k = 0; k < 3; k++) sv[k] = Cpf[k] - r * d[k];
     double msv = geom_norm(sv), hat[3];
     for (int k = 0; k < 3; k++) hat[k] = sv[k] / (msv + ROOTVSMALL);
     double fd = fd0 + ROOTVSMALL;
-    for (int i = m->face_off[f]; i < m->face_off[f + 1]; i++) {
+    for (int i = 0; i < n; i++) {
         double r2[3];
-        sub3(m->points + 3 * (size_t)m->face_idx[i], Cf, r2);
+        sub3(pts + 3 * (size_t)idx[i], Cf, r2);
         double t = fabs(geom_dot(hat, r2));
         if (t > fd) fd = t;
     }
     return msv / fd;
 }
 
-double quality_skewness(const Mesh *m, int f, const double cown[3], const double cnei[3])
+double quality_face_skew(const double *pts, const int *idx, int n, const double S[3], const double Cf[3],
+                         const double cown[3], const double cnei[3])
 {
     double Cpf[3], d[3];
-    sub3(m->face_centre + 3 * (size_t)f, cown, Cpf);
-    sub3(cnei, cown, d);
-    return skew(m, f, Cpf, d, 0.2 * geom_norm(d));
+    sub3(Cf, cown, Cpf);
+    if (cnei) {
+        sub3(cnei, cown, d);
+        return skew(pts, idx, n, S, Cf, Cpf, d, 0.2 * geom_norm(d));
+    }
+    double ms = geom_norm(S) + ROOTVSMALL, nrm[3];
+    for (int k = 0; k < 3; k++) nrm[k] = S[k] / ms;
+    double dn = geom_dot(nrm, Cpf);
+    for (int k = 0; k < 3; k++) d[k] = nrm[k] * dn;
+    return skew(pts, idx, n, S, Cf, Cpf, d, 0.4 * geom_norm(d));
+}
+
+double quality_skewness(const Mesh *m, int f, const double cown[3], const double cnei[3])
+{
+    return quality_face_skew(m->points, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f],
+                             m->face_area + 3 * (size_t)f, m->face_centre + 3 * (size_t)f, cown, cnei);
 }
 
 double quality_boundary_skewness(const Mesh *m, int f, const double cown[3])
 {
-    const double *S = m->face_area + 3 * (size_t)f;
-    double Cpf[3], n[3], d[3];
-    sub3(m->face_centre + 3 * (size_t)f, cown, Cpf);
-    double ms = geom_norm(S) + ROOTVSMALL;
-    for (int k = 0; k < 3; k++) n[k] = S[k] / ms;
-    double dn = geom_dot(n, Cpf);
-    for (int k = 0; k < 3; k++) d[k] = n[k] * dn;
-    return skew(m, f, Cpf, d, 0.4 * geom_norm(d));
+    return quality_skewness(m, f, cown, NULL);
 }
 
 void quality_cell(const Mesh *m, int c, const int empty[3], double *open, double *aspect)
@@ -131,19 +235,71 @@ void quality_empty_dirs(const Mesh *m, int empty[3])
     }
 }
 
+/* OpenFOAM's geometry of a mesh (quality_foam_geometry), which the
+   non-orthogonality and skewness are measured on. */
+typedef struct FoamGeo {
+    double *S, *C, *cc;   /* face area vectors, face centres, cell centres */
+} FoamGeo;
+
+static void foam_geo(const Mesh *m, FoamGeo *g)
+{
+    g->S = mem_alloc(3 * sizeof(double) * ((size_t)m->nfaces + 1));
+    g->C = mem_alloc(3 * sizeof(double) * ((size_t)m->nfaces + 1));
+    g->cc = mem_alloc(3 * sizeof(double) * ((size_t)m->ncells + 1));
+    quality_foam_geometry(m, g->S, g->C, g->cc);
+}
+
+static void foam_geo_free(FoamGeo *g)
+{
+    free(g->S);
+    free(g->C);
+    free(g->cc);
+}
+
 /* Centre of the cell across face f when f is on a cyclic patch with a
    partner of equal size (translated to this side), else NULL. */
-static const double *cyclic_centre(const Mesh *m, int f, double out[3])
+static const double *cyclic_centre(const Mesh *m, const FoamGeo *g, int f, double out[3])
 {
     int p = mesh_face_patch(m, f);
     if (p < 0 || strcmp(m->patches[p].type, "cyclic") || !m->patches[p].neighbour) return NULL;
     int q = mesh_patch(m, m->patches[p].neighbour);
     if (q < 0 || m->patches[q].size != m->patches[p].size) return NULL;
-    int g = m->patches[q].start + (f - m->patches[p].start);
-    const double *Cn = m->cell_centre + 3 * (size_t)m->owner[g];
-    const double *Cf = m->face_centre + 3 * (size_t)f, *Cg = m->face_centre + 3 * (size_t)g;
-    for (int k = 0; k < 3; k++) out[k] = Cn[k] + (Cf[k] - Cg[k]);
+    int h = m->patches[q].start + (f - m->patches[p].start);
+    const double *Cn = g->cc + 3 * (size_t)m->owner[h];
+    const double *Cf = g->C + 3 * (size_t)f, *Ch = g->C + 3 * (size_t)h;
+    for (int k = 0; k < 3; k++) out[k] = Cn[k] + (Cf[k] - Ch[k]);
     return out;
+}
+
+/* Skewness of face f and the cosine of its non-orthogonality angle (NAN
+   for a boundary face that is not cyclic); *Cn the centre across f, or
+   NULL. */
+static double face_measures(const Mesh *m, const FoamGeo *g, int f, double tmp[3], const double **Cn, double *cosn)
+{
+    const double *S = g->S + 3 * (size_t)f, *Cp = g->cc + 3 * (size_t)m->owner[f];
+    *Cn = f < m->ninternal ? g->cc + 3 * (size_t)m->neighbour[f] : cyclic_centre(m, g, f, tmp);
+    *cosn = NAN;
+    if (*Cn) {
+        double d[3];
+        sub3(*Cn, Cp, d);
+        *cosn = quality_ortho(d, S);
+    }
+    return quality_face_skew(m->points, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], S,
+                             g->C + 3 * (size_t)f, Cp, *Cn);
+}
+
+void quality_face_measures(const Mesh *m, double *skewness, double *cosn)
+{
+    FoamGeo g;
+    foam_geo(m, &g);
+    for (int f = 0; f < m->nfaces; f++) {
+        double tmp[3], c;
+        const double *Cn;
+        double sk = face_measures(m, &g, f, tmp, &Cn, &c);
+        if (skewness) skewness[f] = sk;
+        if (cosn) cosn[f] = c;
+    }
+    foam_geo_free(&g);
 }
 
 static void measure_faces(const Mesh *m, Quality *q)
@@ -151,30 +307,30 @@ static void measure_faces(const Mesh *m, Quality *q)
     double cos_min = 2, cos_sum = 0;
     long ncos = 0;
     double sev = cos(QUALITY_NONORTH_SEVERE / RAD2DEG);
+    FoamGeo g;
+    foam_geo(m, &g);
     for (int f = 0; f < m->nfaces; f++) {
         const double *S = m->face_area + 3 * (size_t)f, *Cf = m->face_centre + 3 * (size_t)f;
         const double *Cp = m->cell_centre + 3 * (size_t)m->owner[f];
-        double tmp[3], d[3], sk;
-        const double *Cn = f < m->ninternal ? m->cell_centre + 3 * (size_t)m->neighbour[f]
-                                            : cyclic_centre(m, f, tmp);
+        double tmp[3], c;
+        const double *Cn;
+        double sk = face_measures(m, &g, f, tmp, &Cn, &c);
         if (Cn) {
-            sub3(Cn, Cp, d);
-            double c = quality_ortho(d, S);
             if (c < cos_min) cos_min = c, q->nonorth_face = f;
             cos_sum += c;
             ncos++;
             if (c < sev) q->nnonorth++;
-            sk = quality_skewness(m, f, Cp, Cn);
-        } else {
-            sk = quality_boundary_skewness(m, f, Cp);
         }
+        /* orientation on the exact geometry: a grid is broken by it, not
+           by OpenFOAM's approximation of it */
         double out[3];
-        if (Cn && f < m->ninternal) sub3(Cn, Cp, out);
+        if (f < m->ninternal) sub3(m->cell_centre + 3 * (size_t)m->neighbour[f], Cp, out);
         else sub3(Cf, Cp, out);
         if (!(geom_dot(out, S) > 0) && q->norient++ == 0) q->orient_face = f, q->orient_cell = m->owner[f];
         if (sk > q->skew_max) q->skew_max = sk, q->skew_face = f;
         if (sk > QUALITY_SKEW_HIGH) q->nskew++;
     }
+    foam_geo_free(&g);
     if (ncos) {
         q->nonorth_max = acos(fmin(1, fmax(-1, cos_min))) * RAD2DEG;
         q->nonorth_avg = acos(fmin(1, fmax(-1, cos_sum / (double)ncos))) * RAD2DEG;

@@ -16,6 +16,22 @@
 ** Faces of a cyclic patch are measured as internal faces, with the partner
 ** cell's centre translated by the offset between the paired face centres.
 **
+** Non-orthogonality and skewness are measured on OpenFOAM's geometry, not
+** on the exact one, so that they are checkMesh's face for face
+** (primitiveMeshFaceCentresAndAreas.C, primitiveMeshCellCentresAndVols.C):
+**   face centre  a triangle's centroid; a polygon's is the mean of the
+**                centroids of the triangles (p_i, p_i+1, m) about its point
+**                average m, weighted by their UNSIGNED areas |n_i| (geom.c
+**                signs them: a planar face not star-shaped about m, as cut
+**                and merged faces can be, has a different centre);
+**   cell centre  the centres (3/4 C_f + 1/4 c_e) of the pyramids on the
+**                cell's faces with apex c_e, the average of its face
+**                centres, weighted by their signed volumes S_f.(C_f - c_e):
+**                the exact centroid when every face is planar and C_f its
+**                exact centroid, not otherwise (warped faces, or the face
+**                centres above).
+** Orientation and volumes stay on the exact geometry (geom.h).
+**
 ** A grid is broken (quality_check fails) when a cell is not closed
 ** (|sum of outward S| > 1e-12 of the cell's surface), a face normal does
 ** not point from its owner's centre to the neighbour's (or out of a
@@ -77,6 +93,26 @@ typedef struct Quality {
 /* cos of the non-orthogonality angle of area vector S against d (OpenFOAM:
    d.S/(|d||S| + ROOTVSMALL)). */
 double quality_ortho(const double d[3], const double S[3]);
+/* OpenFOAM's area vector S and centre C of the face pts[idx[0..n-1]]
+   (see the top of this file). */
+void quality_foam_face(const double *pts, const int *idx, int n, double S[3], double C[3]);
+/* OpenFOAM's centre of a cell with nf faces: SC holds 6 values per face
+   (area vector, then centre, from quality_foam_face), sgn +1 where the
+   face points out of the cell, -1 where it points in. */
+void quality_foam_cell(int nf, const double *SC, const signed char *sgn, double cc[3]);
+/* OpenFOAM's face area vectors fS, face centres fC (3 per face) and cell
+   centres cc (3 per cell) of m, as checkMesh computes them. */
+void quality_foam_geometry(const Mesh *m, double *fS, double *fC, double *cc);
+/* OpenFOAM's skewness of the face pts[idx[0..n-1]] with area vector S and
+   centre C between cell centres cown and cnei; cnei NULL for a boundary
+   face (primitiveMeshTools::faceSkewness, boundaryFaceSkewness). */
+double quality_face_skew(const double *pts, const int *idx, int n, const double S[3], const double C[3],
+                         const double cown[3], const double cnei[3]);
+/* Per-face skewness and cosine of the non-orthogonality angle (NAN for
+   boundary faces that are not cyclic) on OpenFOAM's geometry, as
+   checkMesh's skewFaces and nonOrthoFaces sets select them; either
+   array (m->nfaces values) may be NULL. */
+void quality_face_measures(const Mesh *m, double *skewness, double *cosn);
 /* Skewness of face f (points, Sf, Cf of the mesh) between cell centres
    cown and cnei. */
 double quality_skewness(const Mesh *m, int f, const double cown[3], const double cnei[3]);

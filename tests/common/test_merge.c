@@ -656,7 +656,13 @@ static void hand_face(MeshBuild *b, int c, int other, int patch, const double ou
    offers the slave T, -z the non-slave M.  But S + M would put the
    centroid (near M's) outside S's wedge face, so S takes T (group 2);
    the cluster S + T (0.404) then has only M left, which is unsound as
-   well: it stays, listed as having no neighbour. */
+   well: it stays, listed as having no neighbour (maxSkewness 0).  With
+   the default maxSkewness 4 the repair undoes S + T as well: S's face
+   y = 1, 0.9 <= x <= 1, lies 0.55 along x from the union's centre (about
+   T's, (1.5, 0.8, 1.5)) but only 0.2 away in y, skewness about
+   0.55 / max(0.4 x 0.2, 0.05) = 6.9 (6.81 exactly, and one more face
+   above 4), where the cut grid has at most 4;
+   no other union is clean, so S and T (0.4 of its parent) stay alone. */
 TEST(unsound_master_refused)
 {
     MeshBuild b;
@@ -707,17 +713,32 @@ TEST(unsound_master_refused)
     NEAR(in.cell_vol[S], 0.5 * (0.01 - 0.002 + 0.0004 / 3), 1e-15);
     NEAR(in.cell_vol[T], 0.4, 1e-15);
     merge_opts_default(&o);
+    o.max_skewness = 0;
     EXPECT(merge_mesh(&in, &o, &out, &st, &e) == 0, "%s", e.msg);
     if (test_failed_now) return;
     Quality q;
     quality_measure(&out, &q);
     EXPECT(quality_check(&out, &q, NULL, &e) == 0, "%s", e.msg);
+    EXPECT(q.nskew == 2 && q.skew_max > 6.8 && q.skew_max < 6.9, "%d skewed faces, max %g", q.nskew, q.skew_max);
     EXPECT(out.ncells == 2 && out.merge_map[S] == out.merge_map[T] && out.merge_map[M] != out.merge_map[S],
            "%d cells, map %d %d %d", out.ncells, out.merge_map[M], out.merge_map[S], out.merge_map[T]);
     EXPECT(st.nunresolved == 1 && st.unresolved[0] == out.merge_map[S] && st.reason[0] == MERGE_NO_NEIGHBOUR,
            "%d unresolved", st.nunresolved);
     NEAR(out.cell_vol[out.merge_map[S]], in.cell_vol[S] + 0.4, 1e-15);
     EXPECT(out.cell_parent[out.merge_map[S]] == 3, "parent %d", out.cell_parent[out.merge_map[S]]);
+    merge_stats_free(&st);
+    mesh_free(&out);
+
+    merge_opts_default(&o);
+    EXPECT(merge_mesh(&in, &o, &out, &st, &e) == 0, "%s", e.msg);
+    quality_measure(&out, &q);
+    EXPECT(out.ncells == 3 && st.nundone == 1 && st.nclean_merged == 0, "%d cells, %d undone", out.ncells, st.nundone);
+    EXPECT(q.nskew == 0 && q.skew_max <= st.skew_max_cut + 1e-12, "max skewness %g, cut grid %g", q.skew_max,
+           st.skew_max_cut);
+    NEAR(st.skew_max_after, q.skew_max, 1e-12);
+    EXPECT(st.nunresolved == 2 && st.unresolved[0] == out.merge_map[S] && st.unresolved[1] == out.merge_map[T] &&
+               st.reason[0] == MERGE_NO_NEIGHBOUR && st.reason[1] == MERGE_NO_NEIGHBOUR,
+           "%d unresolved", st.nunresolved);
     merge_stats_free(&st);
     mesh_free(&in);
     mesh_free(&out);
@@ -773,7 +794,9 @@ TEST(bad_input)
    joins the two clusters (the union's centroid is twice as far from the
    wall, which halves the worst skewness to 3.85); with maxSkewness 0 the
    face stays.  A single row of such cells has no neighbour to merge
-   with: the cluster is reported. */
+   with: the pass cannot mend the cluster (2,0)+(3,0), and since the cut
+   grid's faces are all below 4 the repair undoes it; (2,0) then has no
+   clean union and stays, reported. */
 static void polygon_centroid(const double (*p)[2], int n, double c[2])
 {
     double a = 0;
@@ -848,10 +871,13 @@ TEST(skewness_pass)
     cut2(&in, &g1);
     EXPECT(merge_mesh(&in, &o, &out, &st, &e) == 0, "%s", e.msg);
     check_merged(&in, &out, &st, 0.5);
-    EXPECT(out.ncells == 1 && st.nunresolved == 1 && st.reason[0] == MERGE_SKEWNESS, "%d cells, %d unresolved",
-           out.ncells, st.nunresolved);
-    NEAR(st.skew_max_after, skew0, 1e-12);
-    if (st.nunresolved) CONTAINS(merge_reason_name(st.reason[0]), "maxSkewness");
+    quality_measure(&out, &q);
+    EXPECT(out.ncells == 2 && st.nundone == 1 && st.nunresolved == 1 && st.reason[0] == MERGE_NO_NEIGHBOUR,
+           "%d cells, %d unresolved", out.ncells, st.nunresolved);
+    EXPECT(st.skew_max_cut < 4 && q.nskew == 0 && q.skew_max <= st.skew_max_cut + 1e-12, "max skewness %g, cut %g",
+           q.skew_max, st.skew_max_cut);
+    NEAR(st.skew_max_after, q.skew_max, 1e-12);
+    CONTAINS(merge_reason_name(MERGE_SKEWNESS), "maxSkewness");
     merge_stats_free(&st);
     mesh_free(&out);
     mesh_free(&in);

@@ -10,6 +10,9 @@
 **   s/(1+s^2)  (OpenFOAM's normalisation, fd = 0.5 for s <= 4);
 **   aspect ratio of B = (2 + 2s)/2 = 1 + s (> 1 + s/3, the 3-D term).
 */
+#include <math.h>
+#include <string.h>
+
 #include "mem.h"
 #include "mesh.h"
 #include "quality.h"
@@ -177,11 +180,125 @@ TEST(broken)
     mesh_free(&m);
 }
 
+/* OpenFOAM's geometry on a prism whose cross-section is the chevron
+   (0,0) (6,0) (6,6) (3,1) (0,6), area 21, extruded over 0 <= z <= 1.  The
+   chevron is not star-shaped about its point average m = (3, 2.6): the
+   fan triangles (6,6) (3,1) m and (3,1) (0,6) m fold back.  By hand, in
+   exact fractions:
+     exact centroid of the chevron          (3, 43/21)
+     OpenFOAM's centre (weights |n_i|)      (3, 1843/765)
+     OpenFOAM's cell centre of the prism    (3, 11449/5355, 1/2)
+       (c_e = mean of the 7 face centres; pyramid centres 3/4 C_f + 1/4 c_e
+       weighted by S_f.(C_f - c_e); the side rectangles' centres are their
+       point averages)
+     boundary skewness of the top face      1452/19229
+       (C_f - C_P = (0, 1452/5355, 1/2); the normal part is d, the rest is
+       sv = (0, 1452/5355, 0); fd = 6 - 1843/765 = 19229/5355, the top
+       face's extent in y from its centre) */
+static void chevron_prism(Mesh *m)
+{
+    static const double xy[5][2] = {{0, 0}, {6, 0}, {6, 6}, {3, 1}, {0, 6}};
+    mesh_init(m);
+    m->npoints = 10;
+    m->points = mem_alloc(30 * sizeof(double));
+    for (int i = 0; i < 10; i++) {
+        m->points[3 * i] = xy[i % 5][0];
+        m->points[3 * i + 1] = xy[i % 5][1];
+        m->points[3 * i + 2] = i / 5;
+    }
+    m->nfaces = 7;
+    m->ncells = 1;
+    m->face_off = mem_alloc(8 * sizeof(int));
+    m->face_idx = mem_alloc(30 * sizeof(int));
+    int n = 0;
+    m->face_off[0] = 0;
+    for (int i = 4; i >= 0; i--) m->face_idx[n++] = i;   /* bottom, outward -z */
+    m->face_off[1] = n;
+    for (int i = 0; i < 5; i++) m->face_idx[n++] = 5 + i;   /* top */
+    m->face_off[2] = n;
+    for (int i = 0; i < 5; i++) {
+        int j = (i + 1) % 5;
+        m->face_idx[n++] = i;
+        m->face_idx[n++] = j;
+        m->face_idx[n++] = 5 + j;
+        m->face_idx[n++] = 5 + i;
+        m->face_off[3 + i] = n;
+    }
+    m->owner = MEM_NEW(int, 7);
+    m->npatches = 1;
+    m->patches = MEM_NEW(Patch, 1);
+    m->patches[0].name = mem_strdup("walls");
+    m->patches[0].type = mem_strdup("wall");
+    m->patches[0].size = 7;
+}
+
+TEST(foam_geometry_nonconvex)
+{
+    Mesh m;
+    chevron_prism(&m);
+    double S[3], C[3], fS[21], fC[21], cc[3], sk[7];
+    quality_foam_face(m.points, m.face_idx + m.face_off[1], 5, S, C);
+    NEAR(S[0], 0, 1e-15);
+    NEAR(S[1], 0, 1e-15);
+    NEAR(S[2], 21, 1e-13);
+    NEAR(C[0], 3, 1e-15);
+    NEAR(C[1], 1843.0 / 765, 1e-14);
+    NEAR(C[2], 1, 1e-15);
+    quality_foam_geometry(&m, fS, fC, cc);
+    NEAR(cc[0], 3, 1e-14);
+    NEAR(cc[1], 11449.0 / 5355, 1e-14);
+    NEAR(cc[2], 0.5, 1e-14);
+    quality_face_measures(&m, sk, NULL);
+    NEAR(sk[1], 1452.0 / 19229, 1e-14);
+    Quality q;
+    quality_measure(&m, &q);
+    /* the exact geometry is unchanged: the centroid, not OpenFOAM's centre */
+    NEAR(m.face_centre[4], 43.0 / 21, 1e-14);
+    NEAR(m.cell_centre[1], 43.0 / 21, 1e-14);
+    NEAR(q.vol_total, 21, 1e-13);
+    EXPECT(q.skew_max >= 1452.0 / 19229 - 1e-14, "max skewness %.17g", q.skew_max);
+    /* quality_foam_cell from the faces gives the mesh-wide centre */
+    double SC[42], c1[3];
+    signed char sg[7];
+    for (int f = 0; f < 7; f++) {
+        memcpy(SC + 6 * f, fS + 3 * f, 3 * sizeof(double));
+        memcpy(SC + 6 * f + 3, fC + 3 * f, 3 * sizeof(double));
+        sg[f] = 1;
+    }
+    quality_foam_cell(7, SC, sg, c1);
+    for (int k = 0; k < 3; k++) NEAR(c1[k], cc[k], 1e-15);
+    mesh_free(&m);
+}
+
+/* A warped quadrilateral (0,0,0) (1,0,0) (1,1,1) (0,1,0): point average
+   m = (1/2, 1/2, 1/4); the two fan triangles at the origin have
+   |n| = sqrt5/4, the two at the lifted corner 3/4, and the corner sums
+   about m of the first pair add up to -(1, 1, 1), of the second to
+   +(1, 1, 1), so OpenFOAM's centre is
+   m + (3/4 - sqrt5/4) / (3 (2 sqrt5/4 + 2 3/4)) (1, 1, 1)
+     = m + (3 - sqrt5) / (6 (3 + sqrt5)) (1, 1, 1),
+   and S = (-1/2, -1/2, 1). */
+TEST(foam_face_warped)
+{
+    const double P[12] = {0, 0, 0, 1, 0, 0, 1, 1, 1, 0, 1, 0};
+    const int idx[4] = {0, 1, 2, 3};
+    double S[3], C[3], t = (3 - sqrt(5.0)) / (6 * (3 + sqrt(5.0)));
+    quality_foam_face(P, idx, 4, S, C);
+    NEAR(S[0], -0.5, 1e-15);
+    NEAR(S[1], -0.5, 1e-15);
+    NEAR(S[2], 1, 1e-15);
+    NEAR(C[0], 0.5 + t, 1e-15);
+    NEAR(C[1], 0.5 + t, 1e-15);
+    NEAR(C[2], 0.25 + t, 1e-15);
+}
+
 int main(void)
 {
     RUN(skewed_angles);
     RUN(severe);
     RUN(parents);
     RUN(broken);
+    RUN(foam_geometry_nonconvex);
+    RUN(foam_face_warped);
     return test_summary();
 }

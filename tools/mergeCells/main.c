@@ -94,8 +94,10 @@ static void report(FILE *f, const MergeStats *s, const Mesh *m)
     fprintf(f, "  clusters:                %d (%d round%s)\n", s->nclusters, s->niter, s->niter == 1 ? "" : "s");
     fprintf(f, "  smallest volume ratio:   before %.6g, after %.6g (cell %d)\n", s->ratio_min_before,
             s->ratio_min_after, s->ratio_min_cell);
-    fprintf(f, "  max skewness:            before the quality pass %.6g, after %.6g (%d merge%s)\n",
-            s->skew_max_before, s->skew_max_after, s->nskew_merged, s->nskew_merged == 1 ? "" : "s");
+    fprintf(f, "  max skewness:            cut grid %.10g, after the volume rounds %.10g, after %.10g (checkMesh's)\n",
+            s->skew_max_cut, s->skew_max_before, s->skew_max_after);
+    fprintf(f, "  quality merges:          %d (quality pass), %d clusters undone, %d merges after them\n",
+            s->nskew_merged, s->nundone, s->nclean_merged);
     fprintf(f, "  worst aspect ratio:      before %.6g, after %.6g\n", s->aspect_max_before, s->aspect_max_after);
     fprintf(f, "  total volume:            before %.15g, after %.15g (relative difference %.3e)\n", s->vol_before,
             s->vol_after, rel);
