@@ -285,7 +285,7 @@ TEST(commit_dir_leaves_nothing_beside)
     Err e;
     make_tree(dst, "old");
     for (int k = 0; k < 3; k++) {
-        char text[8];
+        char text[16];
         snprintf(text, sizeof text, "new%d", k);
         make_tree(tmp, text);
         EXPECT(io_commit_dir(tmp, dst, &e) == 0, "%s", e.msg);
