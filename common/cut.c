@@ -90,6 +90,9 @@
 #define MAXP       16    /* points of one grid-face polygon (at most 8) */
 #define MAXS       64    /* boundary segments of one cell (at most 24) */
 #define MAXSIDE    (6 * MAXP) /* sides of one cell's grid-face polygons */
+#define EXTRA_SNAP 100   /* extrapolated crossings: snap distances to an end (settle) */
+#define DEGENERATE 1e-12  /* a cell piece below this fraction of its cell is dropped */
+#define OFFSET     (4 * EXTRA_SNAP) /* moved edge copies, in snap distances (offset_cut) */
 #define PROBE      1000  /* corner probes, in snap distances (local_fluid) */
 
 typedef struct CutPt {
@@ -290,19 +293,30 @@ static int moved_cut(const Ctx *c, int a, const double p0[3], double xhi, int fl
 }
 
 /* The crossing on an unmoved edge from crossings s[0..2] on copies
-   moved by 1, 2 and 4 times a small offset (n of them found): linear
-   extrapolation where the crossing moves with the offset (a surface
-   through the edge), square-root extrapolation where it moves with its
-   square root (a curved surface touching the edge: a circle tangent to a
-   grid line), the crossing itself where it stays put. */
+   moved by 1, 2 and 4 times a small offset (n of them found): quadratic
+   extrapolation where the crossing moves smoothly with the offset (a
+   surface through the edge; the copies of one edge moved in different
+   directions then agree to round-off), square-root extrapolation where
+   it moves with its square root (a curved surface touching the edge: a
+   circle tangent to a grid line), the crossing itself where it stays
+   put. */
 static double extrapolate(const double s[3], int n)
 {
     if (n < 2 || s[1] == s[0]) return s[0];
-    double lin = 2 * s[0] - s[1];
-    if (n < 3) return lin;
+    if (n < 3) return 2 * s[0] - s[1];
     double r = (s[2] - s[1]) / (s[1] - s[0]);
     if (fabs(r - M_SQRT2) < 0.1) return (M_SQRT2 * s[0] - s[1]) / (M_SQRT2 - 1);
-    return lin;
+    return (8 * s[0] - 6 * s[1] + s[2]) / 3;
+}
+
+/* An extrapolated crossing s on the edge xlo..xhi, put on an end it lies
+   within EXTRA_SNAP snap distances of: extrapolation from crossings near
+   a tangency is good to about the square root of the round-off only, and
+   every computation of a point on the end must give the end itself. */
+static double settle(const Ctx *c, double s, double xlo, double xhi)
+{
+    double tol = EXTRA_SNAP * c->snap * (xhi - xlo);
+    return fabs(s - xlo) < tol ? xlo : fabs(s - xhi) < tol ? xhi : s;
 }
 
 /* The boundary crossing on an edge that lies in the surface (a grid line
@@ -324,11 +338,11 @@ static int offset_cut(const Ctx *c, int a, int64_t v, int fluid_lo, double *s, i
         int b = (a + 1 + d / 2) % 3, l1, l2;
         int lo = ijk[b] < c->n[b] ? ijk[b] : ijk[b] - 1;
         double h = c->x[b][lo + 1] - c->x[b][lo];
-        double off = (d & 1 ? -1 : 1) * c->snap * h, sk[3];
+        double off = (d & 1 ? -1 : 1) * OFFSET * c->snap * h, sk[3];
         int nk = 0;
         while (nk < 3 && moved_cut(c, a, p0, xhi, fluid_lo, b, (1 << nk) * off, &sk[nk], nk ? &l2 : &l1)) nk++;
         if (!nk) continue;
-        double s1 = extrapolate(sk, nk);
+        double s1 = settle(c, extrapolate(sk, nk), p0[a], xhi);
         if (!found || fabs(s1 - xf) < fabs(*s - xf)) *s = s1, *leaf = l1;
         found = 1;
     }
@@ -369,7 +383,7 @@ static void edge_cut(Ctx *c, const Line *l, int a, int i, int64_t va, int *lo)
         return;
     }
     if (cnt >= 2) c->st->nodd++;
-    p->s = fmin(fmax(l->s[best], x[i]), x[i + 1]);
+    p->s = settle(c, fmin(fmax(l->s[best], x[i]), x[i + 1]), x[i], x[i + 1]);
     p->leaf = l->cr[best].leaf;
 }
 
@@ -511,16 +525,20 @@ static void snap(Ctx *c)
             }
     }
     free(list);
+    /* points on an end: on the solid end as snapping puts them, and on
+       the fluid end where an extrapolated crossing (offset_cut) settled
+       there; either way the end's own mesh point */
     for (size_t i = 0; i < c->cap; i++) {
         CutPt *p = &c->tab[i];
         if (p->key < 0 || p->dead || p->at >= 0) continue;
         double xlo, xhi, h = edge_len(c, p, &xlo, &xhi);
         int64_t v = p->key / 3;
-        double xs = c->cls[v] ? xhi : xlo;
-        if (fabs(p->s - xs) < c->snap * h) {
-            p->at = c->cls[v] ? 1 : 0;
-            p->s = xs;
-            c->onsurf[c->cls[v] ? v + c->sv[p->key % 3] : v] = 1;
+        double xs = c->cls[v] ? xhi : xlo, xf = c->cls[v] ? xlo : xhi;
+        if (fabs(p->s - xs) < c->snap * h || p->s == xf) {
+            int up = fabs(p->s - xs) < c->snap * h ? c->cls[v] != 0 : !c->cls[v];
+            p->at = (signed char)up;
+            p->s = up ? xhi : xlo;
+            c->onsurf[up ? v + c->sv[p->key % 3] : v] = 1;
             c->st->nsnap++;
         }
     }
@@ -1133,7 +1151,7 @@ static void side_point(Ctx *c, const int ijk[3], int q, int a, int fluid_lo)
     double p0[3] = {c->x[0][vi[0]], c->x[1][vi[1]], c->x[2][vi[2]]}, xhi = c->x[a][vi[a] + 1];
     double h = xhi - p0[a], off[3] = {0, 0, 0}, sk[3], s1;
     for (int b = 0; b < 3; b++)
-        if (b != a) off[b] = ((q >> b) & 1 ? -1 : 1) * c->snap * (c->x[b][ijk[b] + 1] - c->x[b][ijk[b]]);
+        if (b != a) off[b] = ((q >> b) & 1 ? -1 : 1) * OFFSET * c->snap * (c->x[b][ijk[b] + 1] - c->x[b][ijk[b]]);
     int l1, l2, nk = 0;
     CutPt *p;
     while (nk < 3 && shifted_cut(c, a, p0, xhi, fluid_lo, off, &sk[nk], nk ? &l2 : &l1)) {
@@ -1141,7 +1159,7 @@ static void side_point(Ctx *c, const int ijk[3], int q, int a, int fluid_lo)
         nk++;
     }
     if (nk) {
-        s1 = extrapolate(sk, nk);
+        s1 = settle(c, extrapolate(sk, nk), p0[a], xhi);
     } else if (!offset_cut(c, a, v, fluid_lo, &s1, &l1)) {
         c->st->ninconsistent++;
         p = cut_insert(c, 3 * v + a);
@@ -1152,8 +1170,8 @@ static void side_point(Ctx *c, const int ijk[3], int q, int a, int fluid_lo)
     p = cut_insert(c, 3 * v + a);
     p->leaf = l1;
     p->s = fmin(fmax(s1, p0[a]), xhi);
-    if (p->s - p0[a] < c->snap * h) p->at = 0, p->s = p0[a];
-    else if (xhi - p->s < c->snap * h) p->at = 1, p->s = xhi;
+    if (p->s == p0[a] || p->s - p0[a] < c->snap * h) p->at = 0, p->s = p0[a];
+    else if (p->s == xhi || xhi - p->s < c->snap * h) p->at = 1, p->s = xhi;
 }
 
 /* Points for the edges whose ends a cell sees differently and the grid
@@ -1274,7 +1292,9 @@ static void grid_face(Ctx *c, const int ijk[3], int64_t ci, int64_t v0, int a, i
     }
 }
 
-static void boundary_faces(Ctx *c, Poly *pl, Poly *pu, int cell, int mask)
+/* The boundary loops of a cell whose grid-face polygons are pl (lower
+   faces) and pu (upper faces). */
+static int cell_loops(const Poly *pl, const Poly *pu, Loop *loops, int maxl)
 {
     Seg s[MAXSIDE];
     int ns = 0;
@@ -1284,8 +1304,52 @@ static void boundary_faces(Ctx *c, Poly *pl, Poly *pu, int cell, int mask)
     }
     ns = cancel_spurs(s, ns);
     if (ns > MAXS) ns = MAXS; /* a cell's boundary has at most 24 */
+    return chain(s, ns, loops, maxl);
+}
+
+/* Cells with fluid corners but (next to) no fluid volume: a corner on
+   the surface whose probe is fluid while every edge from it is cut at
+   the corner itself (a narrow wedge of fluid along the cell's diagonal,
+   thinner than the snap distance along the edges).  Their grid-face
+   polygons and boundary loops enclose less than DEGENERATE of the cell;
+   they are dropped before any face is made, so their neighbours close
+   their faces towards them with walls. */
+static void drop_degenerate(Ctx *c)
+{
+    for (int k = 0; k < c->n[2]; k++)
+        for (int j = 0; j < c->n[1]; j++)
+            for (int i = 0; i < c->n[0]; i++) {
+                int64_t ci = i + c->n[0] * (j + (int64_t)c->n[1] * k), v0 = cell_base(c, i, j, k);
+                int mask = c->lmask[ci];
+                if (!mask || mask == 255) continue;
+                Poly pl[3], pu[3];
+                double vol = 1;
+                for (int a = 0; a < 3; a++) {
+                    face_poly_ms(c, a, v0 + c->sv[a], face_bits(mask, a, 1), &pu[a]);
+                    face_poly_ms(c, a, v0, face_bits(mask, a, 0), &pl[a]);
+                }
+                const int ijk[3] = {i, j, k};
+                for (int a = 0; a < 3; a++) vol *= c->x[a][ijk[a] + 1] - c->x[a][ijk[a]];
+                Loop loops[MAXS / 3 + 1];
+                int nl = cell_loops(pl, pu, loops, MAXS / 3 + 1);
+                double r[3], v, mo[3];
+                polys_moment(c, pl, pu, r, &v, mo);
+                for (int l = 0; l < nl; l++) {
+                    double m[3];
+                    loop_centroid(c, &loops[l], m);
+                    fan_moment(c, &loops[l], m, r, &v, mo);
+                }
+                if (!(v > DEGENERATE * vol)) {
+                    c->lmask[ci] = 0;
+                    c->st->ndegenerate++;
+                }
+            }
+}
+
+static void boundary_faces(Ctx *c, Poly *pl, Poly *pu, int cell, int mask)
+{
     Loop loops[MAXS / 3 + 1];
-    int nl = chain(s, ns, loops, MAXS / 3 + 1);
+    int nl = cell_loops(pl, pu, loops, MAXS / 3 + 1);
     int diag = 0;
     for (int q = 0; q < 4; q++)
         if (mask == ((1 << q) | (1 << (7 - q)))) diag = 1;
@@ -1519,6 +1583,7 @@ int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o, Mesh *out, C
     if (c.snap > 0) surface_corners(&c);
     local_masks(&c);
     local_points(&c);
+    drop_degenerate(&c);
     int *parent;
     int nc = number_cells(&c, &parent);
     if (nc == 0) {

@@ -72,6 +72,7 @@ typedef struct CutStats {
     double area_boundary;   /* area of the immersed boundary */
     int nboundary;          /* immersed boundary faces */
     int nthin, nodd, nsnap, ninconsistent, ntunnel;
+    int ndegenerate;        /* cells with fluid corners but no volume, dropped */
 } CutStats;
 
 void cut_opts_default(CutOpts *o);

@@ -8,6 +8,7 @@
 #ifndef KIESEL_TEST_RANDGEO_H
 #define KIESEL_TEST_RANDGEO_H
 
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -90,6 +91,77 @@ static int rand_shape(char *o, size_t n, int depth)
     for (int i = 0; i < m; i++) {
         k += snprintf(o + k, n - (size_t)k, " op%d { ", i);
         k += rand_shape(o + k, n - (size_t)k, depth - 1);
+        k += snprintf(o + k, n - (size_t)k, " }");
+    }
+    return k;
+}
+
+/* A random primitive placed on purpose on a grid of spacing g on the
+   unit box: faces on grid planes, axes on grid lines, centres and apices
+   on grid vertices, radii that make circles tangent to grid lines or run
+   through grid vertices, planes through grid vertices with small integer
+   normals, prisms with their vertices on grid vertices. */
+static inline int rand_aligned_prim(char *o, size_t n, double g)
+{
+    int m = (int)(1 / g + 0.5);
+#define RI(a, b) ((a) + (int)(rnd() * ((b) - (a) + 1)))
+    int c[3] = {RI(1, m - 1), RI(1, m - 1), RI(1, m - 1)}, ax = RI(0, 2);
+    double r = rnd() < 0.5 ? RI(1, m / 2) * g : sqrt((double)(RI(1, 3) * RI(1, 3) + RI(0, 2) * RI(0, 2))) * g;
+    switch (RI(0, 5)) {
+    case 0: {
+        int a[3], b[3];
+        for (int q = 0; q < 3; q++) a[q] = RI(0, m - 1), b[q] = RI(a[q] + 1, m);
+        return snprintf(o, n, "shape box; min (%.17g %.17g %.17g); max (%.17g %.17g %.17g);", a[0] * g, a[1] * g,
+                        a[2] * g, b[0] * g, b[1] * g, b[2] * g);
+    }
+    case 1:
+        return snprintf(o, n, "shape sphere; centre (%.17g %.17g %.17g); radius %.17g;", c[0] * g, c[1] * g,
+                        c[2] * g, r);
+    case 2: {
+        double p1[3] = {c[0] * g, c[1] * g, c[2] * g}, p2[3] = {p1[0], p1[1], p1[2]};
+        p1[ax] = RI(0, m / 2) * g;
+        p2[ax] = RI(m / 2 + 1, m) * g;
+        return snprintf(o, n, "shape cylinder; point1 (%.17g %.17g %.17g); point2 (%.17g %.17g %.17g); radius %.17g;",
+                        p1[0], p1[1], p1[2], p2[0], p2[1], p2[2], r);
+    }
+    case 3:
+        return snprintf(o, n, "shape halfSpace; point (%.17g %.17g %.17g); normal (%d %d %d);", c[0] * g, c[1] * g,
+                        c[2] * g, RI(-1, 1), RI(-2, 2), RI(1, 2) * (rnd() < 0.5 ? 1 : -1));
+    case 4: {
+        double p1[3] = {c[0] * g, c[1] * g, c[2] * g}, p2[3] = {p1[0], p1[1], p1[2]};
+        p2[ax] = RI(0, m) * g;
+        if (p2[ax] == p1[ax]) p2[ax] = p1[ax] < 0.5 ? 1 : 0;
+        return snprintf(o, n,
+                        "shape cone; point1 (%.17g %.17g %.17g); point2 (%.17g %.17g %.17g); radius1 %.17g; "
+                        "radius2 0;",
+                        p1[0], p1[1], p1[2], p2[0], p2[1], p2[2], r);
+    }
+    default: {
+        static const char *const axes[] = {"x", "y", "z"};
+        int u[3], v[3];
+        do
+            for (int q = 0; q < 3; q++) u[q] = RI(0, m), v[q] = RI(0, m);
+        while ((u[1] - u[0]) * (v[2] - v[0]) == (u[2] - u[0]) * (v[1] - v[0]));
+        return snprintf(o, n,
+                        "shape polygon; axis %s; points ((%.17g %.17g) (%.17g %.17g) (%.17g %.17g)); min (%.17g %.17g "
+                        "%.17g); max (%.17g %.17g %.17g);",
+                        axes[ax], u[0] * g, v[0] * g, u[1] * g, v[1] * g, u[2] * g, v[2] * g, c[0] * g, c[0] * g,
+                        c[0] * g, (c[0] + RI(1, m - c[0])) * g, (c[0] + RI(1, m - c[0])) * g,
+                        (c[0] + RI(1, m - c[0])) * g);
+    }
+    }
+#undef RI
+}
+
+/* A random CSG tree of grid-aligned primitives. */
+static inline int rand_aligned_shape(char *o, size_t n, int depth, double g)
+{
+    if (depth == 0 || rnd() < 0.4) return rand_aligned_prim(o, n, g);
+    static const char *const ops[] = {"union", "intersection", "difference"};
+    int k = snprintf(o, n, "shape %s;", ops[(int)(rnd() * 3)]);
+    for (int i = 0; i < 2; i++) {
+        k += snprintf(o + k, n - (size_t)k, " op%d { ", i);
+        k += rand_aligned_shape(o + k, n - (size_t)k, depth - 1, g);
         k += snprintf(o + k, n - (size_t)k, " }");
     }
     return k;
