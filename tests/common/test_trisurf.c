@@ -540,6 +540,40 @@ TEST(overlapping_cavities)
     trisurf_free(&s);
 }
 
+/* Open surfaces (allowOpen) keep their meaning: a unit cube missing one
+   triangle of its face x = 0, given inside out, is turned outward, and
+   every point with x >= 0 (whose ray along +x leaves through the intact
+   face x = 1) is classified as the half-open cube; with an outward cube
+   [0.25, 0.75]^3 inside it, that one becomes a cavity: 1 - 0.125. */
+TEST(open_surface_shells)
+{
+    double xyz[216], lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1}, lo2[3] = {0.25, 0.25, 0.25}, hi2[3] = {0.75, 0.75, 0.75};
+    box_soup(xyz, lo, hi);
+    reverse_tris(xyz, 12);
+    TriSurf s;
+    trisurf_from_soup(&s, xyz + 9, 11, NULL);
+    int f = trisurf_orient(&s);
+    EXPECT(f == 11, "open cube inside out: flipped %d of 11", f);
+    prepared(&s);
+    uint64_t st = 17;
+    int bad = 0;
+    for (int i = 0; i < 20000; i++) {
+        double x[3] = {1.5 * rnd(&st), -0.5 + 2 * rnd(&st), -0.5 + 2 * rnd(&st)};
+        if (trisurf_inside(&s, x) != cube_exact(x)) bad++;
+    }
+    EXPECT(bad == 0, "open cube: %d of 20000 points with x >= 0 misclassified", bad);
+    trisurf_free(&s);
+    box_soup(xyz, lo, hi);
+    box_soup(xyz + 108, lo2, hi2);
+    trisurf_from_soup(&s, xyz + 9, 23, NULL);
+    f = trisurf_orient(&s);
+    EXPECT(f == 12, "open cube with a cube inside: flipped %d, expected 12", f);
+    prepared(&s);
+    double V = volume_by_lines(&s, 0, 20);
+    NEAR(V, 0.875, 1e-14);
+    trisurf_free(&s);
+}
+
 /* Thousands of small closed components: the nesting test must not be
    quadratic in their number.  A 40^3 lattice of tetrahedra (64000
    components, 256000 triangles) inside a cube, given outward, with every
@@ -1114,6 +1148,7 @@ int main(void)
     RUN(nested_shells);
     RUN(overlapping_cavities);
     RUN(many_components);
+    RUN(open_surface_shells);
     RUN(degenerate_triangles);
     RUN(transform_mirror);
     RUN(icosphere_volume_area);
