@@ -527,7 +527,7 @@ void quality_report(const Mesh *m, const Quality *q, Buf *out)
                    q->seed_angle_max, q->seed_angle_face, q->seed_offset_max, q->nseed_outside);
     buf_printf(out, "    Severely non-orthogonal (> %g degrees) faces: %d\n", QUALITY_NONORTH_SEVERE,
                q->nnonorth);
-    buf_printf(out, "    Max skewness = %.6g (face %d), highly skew (> %g) faces: %d\n", q->skew_max,
+    buf_printf(out, "    Max skewness = %.10g (face %d), highly skew (> %g) faces: %d\n", q->skew_max,
                q->skew_face, QUALITY_SKEW_HIGH, q->nskew);
     buf_printf(out, "    Max aspect ratio = %.6g (cell %d), high (> %g) cells: %d\n", q->aspect_max,
                q->aspect_cell, QUALITY_ASPECT_HIGH, q->naspect);
