@@ -7,7 +7,9 @@
 ** first moment (sum of V x centroid) and largest member, and a circular
 ** linked list (`next`) threads the members so a cluster's faces can be
 ** walked without building lists.  (Cells' own volumes are kept in the
-** working copy's cell_vol; there are no cell centres: cmom holds them.)  Merging runs in rounds.  A round takes
+** working copy's cell_vol; cmom holds the first moments, and the
+** OpenFOAM centres of clusters and cells are cached in fcc and cc0.)
+** Merging runs in rounds.  A round takes
 ** the clusters below the bound (volume <= M_V x the Cartesian volume of
 ** their largest member) in order of increasing volume ratio (then cell
 ** number, so the result is deterministic) and lets each, if it is still
@@ -37,14 +39,15 @@
 **     4. any other face neighbour;
 **   inside a direction, the larger shared face area first.  The first
 **   candidate whose union is sound wins: every face pyramid on the
-**   union's centroid positive (OpenFOAM's face-pyramid check; a
+**   union's centre (OpenFOAM's, as checkMesh computes it) positive (OpenFOAM's face-pyramid check; a
 **   non-convex union can put the centroid outside a face).  No sound
 **   candidate: the cluster stays as it is and is reported.  (Preferring
 **   unions with skewness <= 4 was tried and dropped: it steered slaves
 **   away from their natural masters into clusters that later had no
 **   sound neighbour, 24 unresolved cells in a 96^3 sphere grid against
 **   none, for 6% fewer skewed faces.)  Skewness is dealt with after the
-**   volume rounds instead, by the quality pass ("quality pass" below).
+**   volume rounds instead, by the quality pass ("quality pass" below),
+**   and what it cannot mend is undone by the repair ("repair" below).
 **
 ** Cost.  Cut cells are a thin layer of a large grid, so the work avoids
 ** touching the regular cells' data: a cell that is its whole parent
@@ -605,23 +608,21 @@ static int merge_rounds(Work *w, char *stuck)
 /* ---- quality pass ----
    After the volume rounds a cluster can still have a face whose OpenFOAM
    skewness exceeds maxSkewness: a small cut piece's boundary face lies
-   far, along the face, from the merged cell's centroid.  Skewness of a
-   face depends only on the centroids of its two cells (one for a boundary
-   face), so merging a set of clusters changes exactly the faces of the
-   union: the pass evaluates those, with the union's centroid from the
-   members' volumes and first moments, for the union of the worst cluster
-   r with each face neighbour t, and takes the sound union (every face
-   pyramid on its centroid positive, as sound_union) with the smallest
-   maximum.  When no such union lowers r's maximum it also tries each t
-   with each neighbour u of r + t (around a curved wall the union with one
-   neighbour often puts the centroid behind a wall face, and a third
-   cluster brings it back).  The merge is made when it lowers r's
+   far, along the face, from the merged cell's centre.  Skewness of a
+   face depends only on the centres of its two cells (one for a boundary
+   face), and a cell's centre only on its own faces, so merging a set of
+   clusters changes exactly the faces of the union: the pass evaluates
+   those (set_eval, with the union's OpenFOAM centre) for the union of the
+   worst cluster r with each face neighbour t, and takes the sound union
+   (every face pyramid on its centre positive, as sound_union) with the
+   smallest maximum.  When no such union lowers r's maximum it also tries
+   each t with each neighbour u of r + t (around a curved wall the union
+   with one neighbour often puts the centre behind a wall face, and a
+   third cluster brings it back).  The merge is made when it lowers r's
    maximum.  (Trying the triples whenever the best pair stayed above the
    limit was worse: the larger clusters left 72 cells above it in a 64^3
-   sphere grid, against 6.)  Empty faces are left out (a merged 2-D
-   cell's joined empty face has its centroid over the cell's, skewness
-   0), and so are faces of cyclic patches (measured against a partner cell
-   the merge does not see). */
+   sphere grid, against 6.)  What the pass leaves above the limit the
+   repair undoes (below). */
 
 static double cluster_skew(Work *w, int r)
 {

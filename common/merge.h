@@ -32,8 +32,19 @@
 ** faces that change (the union's faces, from the union's centroid), among
 ** the unions passing the face-pyramid check, when that lowers it; up to
 ** max_iter rounds; when no union with one neighbour lowers it, unions
-** with two are tried.  Clusters still above the limit are reported with
-** MERGE_SKEWNESS.  Empty and cyclic faces are not measured.
+** with two are tried.  Empty and cyclic faces are not measured.
+** Skewness and the centres it is measured from are checkMesh's
+** (quality.h: OpenFOAM's face and cell centres, not the centroids).
+**
+** Repair [ours, doc/theory.md §7]: a cluster that fails a checkMesh
+** check the cut grid passed (a face skewness above max_skewness and above
+** the face's in the cut grid, a face pyramid not positive, an internal
+** face at 90 degrees or more, aspect ratio above 1000) is dissolved into
+** its input cells, until none fails; then the cells below the bound
+** merge again into passing unions only.  So with max_skewness in (0, 4]
+** the output fails no checkMesh check the input passed.  A cluster still
+** above max_skewness (a face the cut grid had) is reported with
+** MERGE_SKEWNESS.
 */
 #ifndef KIESEL_MERGE_H
 #define KIESEL_MERGE_H
