@@ -63,6 +63,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 enum {
@@ -2399,6 +2400,33 @@ static int tuple_get(const DictNode *t, int w, double *out)
     return -1;
 }
 
+/* A word spelling a number that is not finite: OpenFOAM writes nan and
+   inf (any case, signed) but reads them as words, and so does the parser. */
+static int nonfinite_word(const DictNode *t)
+{
+    if (t->kind != DN_WORD || !t->text) return 0;
+    const char *s = t->text + (t->text[0] == '-' || t->text[0] == '+');
+    return strcasecmp(s, "nan") == 0 || strcasecmp(s, "inf") == 0 || strcasecmp(s, "infinity") == 0;
+}
+
+const DictNode *dict_node_nonfinite(const DictNode *nd, size_t *item)
+{
+    *item = 0;
+    if (nonfinite_word(nd)) return nd;
+    if (nd->kind != DN_LIST) return NULL;
+    for (size_t i = 0; i < nd->n; i++) {
+        const DictNode *t = nd->items[i];
+        const DictNode *w = nonfinite_word(t) ? t : NULL;
+        for (size_t k = 0; !w && t->kind == DN_LIST && k < t->n; k++)
+            if (nonfinite_word(t->items[k])) w = t->items[k];
+        if (w) {
+            *item = i;
+            return w;
+        }
+    }
+    return NULL;
+}
+
 int dict_node_scalars(const DictNode *nd, int width, double **out, size_t *n, Err *e)
 {
     char want[64];
@@ -2437,10 +2465,15 @@ int dict_node_scalars(const DictNode *nd, int width, double **out, size_t *n, Er
         int bad = w == 1 ? t->kind != DN_NUMBER : tuple_get(t, width, v + i * w) != 0;
         if (bad) {
             free(v);
+            size_t k;
+            const DictNode *nf = dict_node_nonfinite(nd, &k);
+            if (nf && k == i)
+                return err_set(e, nf->file, nf->line, "item %zu of the list: '%s' is not a finite number", i,
+                               nf->text);
             char what[128];
             describe(t, what, sizeof what);
             return err_set(e, t->file, t->line, "item %zu of the list: expected %s, found %s", i,
-                           w == 1 ? "a number" : want + 12, what);
+                           w == 1 ? "a number" : want + 10, what);
         }
         if (w == 1) v[i] = t->num;
     }

@@ -181,6 +181,12 @@ int dict_node_scalars(const DictNode *nd, int width, double **out, size_t *n, Er
    array instead of copying it (the node is left empty): readers of big
    lists (points, internalField) avoid a copy of the whole list. */
 int dict_node_take_scalars(DictNode *nd, int width, double **out, size_t *n, Err *e);
+/* The word that spells a non-finite number (nan, inf or infinity, in any
+   case, signed or not): nd itself (*item 0), or the first such item of a
+   list or of one of its tuples (*item its index).  OpenFOAM writes these
+   values but reads them as words, as the parser does, so a reader can
+   name them.  NULL when there is none. */
+const DictNode *dict_node_nonfinite(const DictNode *nd, size_t *item);
 /* Copies a list of integers into a new int array. */
 int dict_node_labels(const DictNode *nd, int **out, size_t *n, Err *e);
 /* As dict_node_labels, handing over a compact label list's array. */

@@ -29,6 +29,18 @@
 ** known value-less types (zeroGradient, slip, ...) drop a stray value,
 ** since OpenFOAM recomputes and never writes it for them.
 **
+** Nothing read is dropped on a rewrite.  OpenFOAM v1912's setFields
+** writes only dimensions, internalField and one boundaryField entry per
+** patch, silently losing user entries, #include'd values and entries for
+** patches the mesh does not have; here every other top-level entry is
+** kept in place (Field.keep) and every boundaryField entry that no patch
+** took is kept after the patches (Field.keep_bf), by the same copy as the
+** extras.  An entry that is used (a group or regex entry some patch
+** takes) is written out per patch instead, as OpenFOAM does.  A kept
+** literal entry that names no patch or group of the mesh is most likely a
+** typo or a stale patch: it gets a warning (Field.warn), since OpenFOAM
+** ignores it without a word.
+**
 ** Writing mirrors OpenFOAM v1912 byte for byte in layout: a list is written
 ** "uniform" when all its items are bitwise equal (so -0 and 0 stay apart
 ** and every round trip is exact), binary lists are raw float64 after a
@@ -115,6 +127,11 @@ void field_free(Field *f)
         free(f->pf[p].value);
         if (f->pf[p].extra) dict_free(f->pf[p].extra);
     }
+    for (int k = 0; k < FIELD_NKEEP; k++)
+        if (f->keep[k]) dict_free(f->keep[k]);
+    if (f->keep_bf) dict_free(f->keep_bf);
+    for (int i = 0; i < f->nwarn; i++) free(f->warn[i]);
+    free(f->warn);
     free(f->pf);
     free(f->v);
     free(f->name);
@@ -219,29 +236,6 @@ static int read_dims(const Dict *d, const char *file, double dims[7], Err *e)
 
 /* ---- values: "uniform X" / "nonuniform List<T> N(...)" ---- */
 
-static int word_nonfinite(const DictNode *nd)
-{
-    if ((nd->kind != DN_WORD && nd->kind != DN_STRING) || !nd->text) return 0;
-    const char *t = nd->text;
-    if (*t == '-' || *t == '+') t++;
-    return strncasecmp(t, "nan", 3) == 0 || strncasecmp(t, "inf", 3) == 0;
-}
-
-/* Index of the first item of a list (or of its tuples) that is a nan/inf
-   word, or -1.  The parser keeps such words as words, not numbers. */
-static long list_nonfinite_word(const DictNode *nd)
-{
-    if (nd->kind != DN_LIST) return -1;
-    for (size_t i = 0; i < nd->n; i++) {
-        const DictNode *it = nd->items[i];
-        if (word_nonfinite(it)) return (long)i;
-        if (it->kind == DN_LIST)
-            for (size_t k = 0; k < it->n; k++)
-                if (word_nonfinite(it->items[k])) return (long)i;
-    }
-    return -1;
-}
-
 static long first_nonfinite(const double *v, size_t n, int width)
 {
     for (size_t i = 0; i < n * (size_t)width; i++)
@@ -261,11 +255,26 @@ static int nonfinite_err(const DictNode *nd, const ValueCtx *c, long i, Err *e)
     return err_set(e, nd->file, nd->line, "%s has a non-finite value (nan or inf) at index %ld", c->what, i);
 }
 
+/* A value written nan or inf (a word to the parser, as to OpenFOAM, which
+   refuses it: "expected scalar value, found word 'nan'"): named with its
+   own line, its cell or face (all of them for a uniform value), and its
+   text.  0 when there is none. */
+static int nonfinite_word_err(const DictNode *nd, const ValueCtx *c, int uniform, Err *e)
+{
+    size_t i;
+    const DictNode *w = dict_node_nonfinite(nd, &i);
+    if (!w) return 0;
+    int ul = (int)strlen(c->unit) - 1;   /* "cells" -> "cell" */
+    if (uniform) return err_set(e, w->file, w->line, "%s has a non-finite value (nan or inf) at index 0: the uniform "
+                                                     "value holds '%s', not a finite number", c->what, w->text);
+    return err_set(e, w->file, w->line, "%s has a non-finite value (nan or inf) at index %zu: %.*s %zu is '%s', not a "
+                                        "finite number", c->what, i, ul, c->unit, i, w->text);
+}
+
 /* The numbers of a uniform value: a number (width 1) or a tuple. */
 static int uniform_value(const DictNode *nd, int width, const ValueCtx *c, double out[3], Err *e)
 {
-    if (word_nonfinite(nd) || (nd->kind == DN_LIST && list_nonfinite_word(nd) >= 0))
-        return nonfinite_err(nd, c, 0, e);
+    if (nonfinite_word_err(nd, c, 1, e)) return -1;
     size_t n = 0;
     double *v = NULL;
     if (nd->kind == DN_NUMBER) {
@@ -341,8 +350,7 @@ static int read_values(const DictEntry *en, int width, int count, const ValueCtx
     if (n != (size_t)count)
         return err_set(e, file, en->line, "%s has %zu values, %s has %d %s", c->what, n, c->whole, count,
                        c->unit);
-    long bad = list_nonfinite_word(nd);
-    if (bad >= 0) return nonfinite_err(nd, c, bad, e);
+    if (nonfinite_word_err(nd, c, 0, e)) return -1;
     double *v = NULL;
     size_t got = 0;
     if (n == 0) {
@@ -353,7 +361,7 @@ static int read_values(const DictEntry *en, int width, int count, const ValueCtx
         free(v);
         return err_set(e, nd->file, nd->line, "%s: expected %zu items of %d numbers", c->what, n, width);
     }
-    bad = first_nonfinite(v, n, width);
+    long bad = first_nonfinite(v, n, width);
     if (bad >= 0) {
         free(v);
         return nonfinite_err(nd, c, bad, e);
@@ -435,27 +443,98 @@ static void mark_regex(Dict *d, const char *key)
         if (strcmp(d->entries[i].key, key) == 0) d->entries[i].is_regex = 1;
 }
 
+static int copy_entries(const Dict *src, Dict *dst, int skip_type_value, Err *e);
+
+static int copy_entry(const DictEntry *en, Dict *dst, Err *e)
+{
+    if (en->dict) {
+        if (copy_entries(en->dict, dict_add_subdict(dst, en->key), 0, e)) return -1;
+    } else {
+        Buf t;
+        buf_init(&t);
+        for (size_t k = 0; k < en->nvals; k++) {
+            if (k) buf_putc(&t, ' ');
+            dict_write_node(en->vals[k], &t);
+        }
+        buf_putc(&t, '\0');
+        int rc = dict_set(dst, en->key, t.p, e);
+        buf_free(&t);
+        if (rc) return -1;
+    }
+    if (en->is_regex) mark_regex(dst, en->key);
+    return 0;
+}
+
 static int copy_entries(const Dict *src, Dict *dst, int skip_type_value, Err *e)
 {
     for (size_t i = 0; i < src->n; i++) {
         const DictEntry *en = &src->entries[i];
         if (skip_type_value && !en->is_regex && (!strcmp(en->key, "type") || !strcmp(en->key, "value")))
             continue;
-        if (en->dict) {
-            if (copy_entries(en->dict, dict_add_subdict(dst, en->key), 0, e)) return -1;
-        } else {
-            Buf t;
-            buf_init(&t);
-            for (size_t k = 0; k < en->nvals; k++) {
-                if (k) buf_putc(&t, ' ');
-                dict_write_node(en->vals[k], &t);
-            }
-            buf_putc(&t, '\0');
-            int rc = dict_set(dst, en->key, t.p, e);
-            buf_free(&t);
-            if (rc) return -1;
+        if (copy_entry(en, dst, e)) return -1;
+    }
+    return 0;
+}
+
+/* ---- kept entries: what a rewrite must not lose ---- */
+
+static void add_warning(Field *f, const char *msg)
+{
+    f->warn = mem_realloc(f->warn, sizeof *f->warn * (size_t)(f->nwarn + 1));
+    f->warn[f->nwarn++] = mem_strdup(msg);
+}
+
+static int keep_entry(Dict **dst, const DictEntry *en, const char *file, Err *e)
+{
+    if (!en->key[0] && !en->is_regex)
+        return err_set(e, en->file, en->line, "a value without a keyword in a field file");
+    if (!*dst) *dst = dict_new(file);
+    return copy_entry(en, *dst, e);
+}
+
+/* Top-level entries other than FoamFile, dimensions, internalField and
+   boundaryField, each in the place after as many of those three as came
+   before it in the file. */
+static int keep_top(Field *f, const Dict *d, const char *file, Err *e)
+{
+    static const char *const known[] = {"dimensions", "internalField", "boundaryField"};
+    int place = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        const DictEntry *en = &d->entries[i];
+        if (!en->is_regex && !strcmp(en->key, "FoamFile")) continue;
+        int k = 0;
+        while (k < 3 && (en->is_regex || strcmp(en->key, known[k]) != 0)) k++;
+        if (k < 3) place++;
+        else if (keep_entry(&f->keep[place < FIELD_NKEEP ? place : FIELD_NKEEP - 1], en, file, e)) return -1;
+    }
+    return 0;
+}
+
+/* Whether name is a patch of the mesh or a group of one of its patches. */
+static int names_patch(const Mesh *m, const char *name)
+{
+    for (int p = 0; p < m->npatches; p++)
+        if (!strcmp(m->patches[p].name, name) || patch_in_group(&m->patches[p], name)) return 1;
+    return 0;
+}
+
+/* The boundaryField entries no patch took (pe: each patch's entry). */
+static int keep_unused(Field *f, const Dict *bf, const Mesh *m, const DictEntry *const *pe, const char *file, Err *e)
+{
+    for (size_t i = 0; i < bf->n; i++) {
+        const DictEntry *en = &bf->entries[i];
+        int used = 0;
+        for (int p = 0; p < m->npatches && !used; p++) used = pe[p] == en;
+        if (used) continue;
+        if (keep_entry(&f->keep_bf, en, file, e)) return -1;
+        if (!en->is_regex && !names_patch(m, en->key)) {
+            char msg[600];
+            snprintf(msg, sizeof msg,
+                     "%s:%d: boundaryField entry '%.200s' names no patch or patch group of the mesh (a typo, or a "
+                     "patch the mesh no longer has?): not used, and kept when the field is written back",
+                     en->file, en->line, en->key);
+            add_warning(f, msg);
         }
-        if (en->is_regex) mark_regex(dst, en->key);
     }
     return 0;
 }
@@ -553,6 +632,9 @@ static int read_body(Field *f, const Mesh *m, const Dict *d, const char *file, E
     int rc = match_patches(bf, m, file, pe, set, e);
     for (int p = 0; p < m->npatches && rc == 0; p++)
         rc = read_patch(&f->pf[p], &m->patches[p], pe[p], f->width, e);
+    if (rc == 0) rc = keep_unused(f, bf, m, pe, file, e);
+    if (rc == 0) rc = keep_top(f, d, file, e);
+    for (size_t i = 0; rc == 0 && i < dict_nwarnings(d); i++) add_warning(f, dict_warning(d, i));
     free(pe);
     free(set);
     return rc;
@@ -727,23 +809,37 @@ static void put_extra_value(Buf *b, const DictEntry *en, int binary)
     }
 }
 
+static void put_entries(Buf *b, const Dict *d, int indent, int binary);
+
+static void put_entry(Buf *b, const DictEntry *en, int indent, int binary)
+{
+    if (en->dict) {
+        for (int s = 0; s < indent; s++) buf_putc(b, ' ');
+        buf_printf(b, en->is_regex ? "\"%s\"\n" : "%s\n", en->key);
+        for (int s = 0; s < indent; s++) buf_putc(b, ' ');
+        buf_puts(b, "{\n");
+        put_entries(b, en->dict, indent + 4, binary);
+        for (int s = 0; s < indent; s++) buf_putc(b, ' ');
+        buf_puts(b, "}\n");
+        return;
+    }
+    put_keyword(b, indent, en->key, en->is_regex);
+    put_extra_value(b, en, binary);
+    buf_puts(b, ";\n");
+}
+
 static void put_entries(Buf *b, const Dict *d, int indent, int binary)
 {
-    for (size_t i = 0; i < d->n; i++) {
-        const DictEntry *en = &d->entries[i];
-        if (en->dict) {
-            for (int s = 0; s < indent; s++) buf_putc(b, ' ');
-            buf_printf(b, en->is_regex ? "\"%s\"\n" : "%s\n", en->key);
-            for (int s = 0; s < indent; s++) buf_putc(b, ' ');
-            buf_puts(b, "{\n");
-            put_entries(b, en->dict, indent + 4, binary);
-            for (int s = 0; s < indent; s++) buf_putc(b, ' ');
-            buf_puts(b, "}\n");
-            continue;
-        }
-        put_keyword(b, indent, en->key, en->is_regex);
-        put_extra_value(b, en, binary);
-        buf_puts(b, ";\n");
+    for (size_t i = 0; i < d->n; i++) put_entry(b, &d->entries[i], indent, binary);
+}
+
+/* Kept top-level entries, each followed by a blank line as OpenFOAM
+   lays out the top level. */
+static void put_kept(Buf *b, const Dict *d, int binary)
+{
+    for (size_t i = 0; d && i < d->n; i++) {
+        put_entry(b, &d->entries[i], 0, binary);
+        buf_putc(b, '\n');
     }
 }
 
@@ -776,17 +872,23 @@ int field_write(const Field *f, const Mesh *m, const char *path, const FieldWrit
     foam_header(&b, f->width == 3 ? "volVectorField" : "volScalarField", o->location, f->name ? f->name : obj,
                 o->binary, NULL);
     free(obj);
+    put_kept(&b, f->keep[0], o->binary);
     buf_puts(&b, "dimensions      [");
     for (int k = 0; k < 7; k++) {
         if (k) buf_putc(&b, ' ');
         foam_put_double(&b, f->dims[k], 0);
     }
     buf_puts(&b, "];\n\n\n");
+    put_kept(&b, f->keep[1], o->binary);
     put_keyword(&b, 0, "internalField", 0);
     put_values(&b, f->v, (size_t)f->ncells, f->width, o);
-    buf_puts(&b, "\nboundaryField\n{\n");
+    buf_putc(&b, '\n');
+    put_kept(&b, f->keep[2], o->binary);
+    buf_puts(&b, "boundaryField\n{\n");
     for (int p = 0; p < f->npatches; p++) put_patch(&b, f, &m->patches[p], &f->pf[p], o);
+    if (f->keep_bf) put_entries(&b, f->keep_bf, 4, o->binary);
     buf_puts(&b, "}\n\n");
+    put_kept(&b, f->keep[3], o->binary);
     foam_footer(&b);
     int rc = io_write_atomic(path, b.p, b.n, o->gzip, e);
     buf_free(&b);

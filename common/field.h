@@ -32,6 +32,10 @@ typedef struct PatchField {
     Dict *extra;       /* other entries, written back verbatim (may be NULL) */
 } PatchField;
 
+/* Places of the kept top-level entries: before dimensions, before
+   internalField, before boundaryField, after boundaryField. */
+enum { FIELD_NKEEP = 4 };
+
 typedef struct Field {
     char *name;
     int width;         /* 1 scalar, 3 vector */
@@ -40,6 +44,21 @@ typedef struct Field {
     double *v;         /* ncells*width */
     int npatches;
     PatchField *pf;    /* one per mesh patch, in mesh order */
+    /* What field_read does not interpret, written back by field_write so
+       that a rewrite loses nothing: the other top-level entries (user
+       entries, values that came from #include), by place (keep[k] goes
+       before the k-th of dimensions, internalField, boundaryField, or
+       after them for k = 3), and the boundaryField entries no patch took
+       (a name that is no patch of the mesh, a group or regex entry that
+       every patch it matches overrides), written after the patches.  NULL
+       when there are none. */
+    Dict *keep[FIELD_NKEEP];
+    Dict *keep_bf;
+    /* "file:line: ..." warnings for the tool to print (err_warn): a
+       boundaryField entry that names no patch or group of the mesh,
+       directives the dictionary reader ignored. */
+    char **warn;
+    int nwarn;
 } Field;
 
 typedef struct FieldWriteOpts {
@@ -61,7 +80,9 @@ void field_free(Field *f);
 /* Reads <path> (or path.gz): class must be volScalarField or
    volVectorField; internalField uniform or nonuniform with the right
    count; a boundaryField entry for every patch.  NaN or Inf values are
-   refused with the file and the first offending index. */
+   refused with the file and the first offending index (and, when written
+   as words, their own line and text).  Entries it does not interpret are
+   kept (keep, keep_bf) and warnings collected (warn), see Field. */
 int field_read(Field *f, const Mesh *m, const char *path, Err *e);
 /* Class of a field file without reading its data: returns width (1 or 3),
    0 when the file is not a vol field, -1 on error. */

@@ -578,12 +578,25 @@ static int take_faces(DictNode *nd, int **off, int **idx, size_t *n, Err *e)
     return dict_node_faces(nd, off, idx, n, e);
 }
 
+/* A coordinate written nan or inf (OpenFOAM writes them, and refuses
+   them when reading: "expected scalar value, found word 'nan'"), named
+   with its own line; without this the list would only be "not a list of
+   3-tuples". */
+static int nonfinite_item(const DictNode *nd, const char *name, const char *what, Err *e)
+{
+    size_t i;
+    const DictNode *w = dict_node_nonfinite(nd, &i);
+    if (!w) return 0;
+    return err_set(e, name, w->line, "%s %zu: coordinate '%s' is not a finite number", what, i, w->text);
+}
+
 static int read_points(Mesh *m, const Dict *d, const char *name, Err *e)
 {
     DictNode *const *v;
     size_t nv, n;
     if (body(d, name, &v, &nv, e)) return -1;
     if (nv != 1) return err_set(e, name, list_line(v), "expected one list of points, found %zu values", nv);
+    if (nonfinite_item(v[0], name, "point", e)) return -1;
     if (dict_node_take_scalars(v[0], 3, &m->points, &n, e) || fits_int(n, name, list_line(v), e)) return -1;
     m->npoints = (int)n;
     return 0;
@@ -844,7 +857,8 @@ static int read_bnormal(Mesh *m, const Dict *d, const char *name, Err *e)
     size_t nv, n;
     if (body(d, name, &v, &nv, e)) return -1;
     if (nv != 1) return err_set(e, name, list_line(v), "expected one list of vectors, found %zu values", nv);
-    if (dict_node_take_scalars(v[0], 3, &m->wall_normal, &n, e)) return -1;
+    if (nonfinite_item(v[0], name, "normal", e) || dict_node_take_scalars(v[0], 3, &m->wall_normal, &n, e))
+        return -1;
     if (n != (size_t)(m->nfaces - m->ninternal))
         return err_set(e, name, list_line(v), "%zu normals for %d boundary faces", n, m->nfaces - m->ninternal);
     for (size_t i = 0; i < 3 * n; i++)
@@ -858,7 +872,7 @@ static int read_seed(Mesh *m, const Dict *d, const char *name, Err *e)
     size_t nv, n;
     if (body(d, name, &v, &nv, e)) return -1;
     if (nv != 1) return err_set(e, name, list_line(v), "expected one list of vectors, found %zu values", nv);
-    if (dict_node_take_scalars(v[0], 3, &m->cell_seed, &n, e)) return -1;
+    if (nonfinite_item(v[0], name, "seed", e) || dict_node_take_scalars(v[0], 3, &m->cell_seed, &n, e)) return -1;
     if (n != (size_t)m->ncells) return err_set(e, name, list_line(v), "%zu seeds for %d cells", n, m->ncells);
     for (size_t i = 0; i < 3 * n; i++)
         if (!isfinite(m->cell_seed[i])) return err_set(e, name, list_line(v), "seed %zu is not finite", i / 3);
@@ -875,6 +889,29 @@ static int read_mergemap(Mesh *m, const Dict *d, const char *name, Err *e)
     return 0;
 }
 
+/* The FoamFile class of file `which`, as OpenFOAM's readStream checks it:
+   the file's own class, or "dictionary", which OpenFOAM accepts for any
+   file.  A file without a header is read as before (older Kiesel
+   pipelines and hand-made test grids have none), but a header without a
+   class is refused, as OpenFOAM refuses it. */
+static int check_class(const Dict *d, int which, const char *name, Err *e)
+{
+    static const char *const want[NFILES] = {"vectorField", "faceList", "labelList", "labelList",
+                                             "polyBoundaryMesh", "dictionary", "labelList",
+                                             "vectorField", "labelList", "vectorField"};
+    const DictEntry *h = dict_find(d, "FoamFile");
+    if (!h || !h->dict) return 0;
+    const DictEntry *ce = dict_find(h->dict, "class");
+    const char *cls = dict_header_class(d), *w = want[which];
+    if (!cls)
+        return err_set(e, name, h->line, "FoamFile header has no class (expected %s%s)", w,
+                       which == F_FACES ? " or faceCompactList" : "");
+    if (!strcmp(cls, w) || !strcmp(cls, "dictionary") || (which == F_FACES && !strcmp(cls, "faceCompactList")))
+        return 0;
+    return err_set(e, name, ce ? ce->line : h->line, "unexpected class %s in the FoamFile header, expected %s%s", cls,
+                   w, which == F_FACES ? " or faceCompactList" : "");
+}
+
 static int build_mesh(Mesh *m, Part *parts, Err *e)
 {
     Dict *d[NFILES] = {0};
@@ -882,7 +919,7 @@ static int build_mesh(Mesh *m, Part *parts, Err *e)
     for (int w = 0; w < NFILES && !rc; w++) {
         if (!parts[w].present) continue;
         d[w] = dict_parse(parts[w].p, parts[w].n, parts[w].name, e);
-        if (!d[w]) rc = -1;
+        rc = !d[w] || check_class(d[w], w, parts[w].name, e) ? -1 : 0;
     }
     if (!rc) rc = read_points(m, d[F_POINTS], parts[F_POINTS].name, e);
     if (!rc) rc = read_faces(m, d[F_FACES], parts[F_FACES].name, e);

@@ -381,11 +381,14 @@ static int write_fields(const SetFields *s, const Mesh *m, const char *case_dir,
 }
 
 int setfields_time(const SetFields *s, const Mesh *m, const char *case_dir, const char *time,
-                   const FieldWriteOpts *o, Buf *log, Err *e)
+                   const FieldWriteOpts *o, Buf *log, Buf *warn, Err *e)
 {
     Field *fields = MEM_NEW(Field, s->nfields);
     int rc = 0;
-    for (int i = 0; i < s->nfields && !rc; i++) rc = read_field(s, i, m, case_dir, time, &fields[i], e);
+    for (int i = 0; i < s->nfields && !rc; i++) {
+        rc = read_field(s, i, m, case_dir, time, &fields[i], e);
+        for (int k = 0; !rc && k < fields[i].nwarn; k++) buf_printf(warn, "%s\n", fields[i].warn[k]);
+    }
     if (!rc) {
         apply(s, m, fields, log);
         rc = write_fields(s, m, case_dir, time, o, fields, log, e);

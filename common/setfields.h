@@ -75,8 +75,11 @@ void setfields_on_mesh(SetFields *s, const Mesh *m, Buf *log);
 
 /* Reads the fields of <case_dir>/<time>, sets the defaults and regions
    and writes the fields back (o->location is replaced by time), appending
-   the progress report to log. */
+   the progress report to log and the fields' warnings (Field.warn: a
+   boundaryField entry naming no patch, ...) to warn, one per line, for
+   the tool to print.  What the fields hold beyond what is set (other
+   entries, unknown patch entries) is written back as read. */
 int setfields_time(const SetFields *s, const Mesh *m, const char *case_dir, const char *time,
-                   const FieldWriteOpts *o, Buf *log, Err *e);
+                   const FieldWriteOpts *o, Buf *log, Buf *warn, Err *e);
 
 #endif

@@ -97,6 +97,7 @@ void vtk_opts_init(VtkOpts *o)
     o->point_data = 0;
     o->time = 0;
     o->title = NULL;
+    o->mesh_name = NULL;
 }
 
 /* ---- encoding ---- */
@@ -392,8 +393,11 @@ static int grid_polygons(const Mesh *m, const int *faces, int nc, int rev, Grid 
     return 0;
 }
 
-/* Each cell's face on the lower empty side (outward normal along -axis). */
-static int grid_2d(const Mesh *m, int axis, Grid *g, const char *path, Err *e)
+/* Each cell's face on the lower empty side (outward normal along -axis).
+   A cell without one, or with two, has a reversed face or misplaced
+   points: the input is at fault, so the message names the mesh (where),
+   not the file being written. */
+static int grid_2d(const Mesh *m, int axis, Grid *g, const char *path, const char *where, Err *e)
 {
     int *lower = mem_alloc(((size_t)m->ncells + 1) * sizeof(int));
     for (int c = 0; c < m->ncells; c++) lower[c] = -1;
@@ -405,8 +409,10 @@ static int grid_2d(const Mesh *m, int axis, Grid *g, const char *path, Err *e)
             if (face_normal_along(m, f, axis) >= 0) continue;
             int c = m->owner[f];
             if (lower[c] >= 0) {
-                rc = err_set(e, path, 0, "2-D mesh: cell %d has two faces (%d, %d) on the lower empty side",
-                             c, lower[c], f);
+                rc = err_set(e, where, 0,
+                             "2-D mesh: cell %d has two faces (%d, %d) on the lower empty side (normal -%c): one "
+                             "is reversed or its points are misplaced (checkGrid names it)",
+                             c, lower[c], f, "xyz"[axis]);
                 break;
             }
             lower[c] = f;
@@ -414,7 +420,9 @@ static int grid_2d(const Mesh *m, int axis, Grid *g, const char *path, Err *e)
     }
     for (int c = 0; c < m->ncells && rc == 0; c++)
         if (lower[c] < 0)
-            rc = err_set(e, path, 0, "2-D mesh: cell %d has no face on the lower empty side (normal -%c)",
+            rc = err_set(e, where, 0,
+                         "2-D mesh: cell %d has no face on the lower empty side (normal -%c): one is reversed or "
+                         "its points are misplaced (checkGrid names it)",
                          c, "xyz"[axis]);
     if (rc == 0) rc = grid_polygons(m, lower, m->ncells, 1, g, path, e);
     free(lower);
@@ -607,7 +615,7 @@ int vtk_write_internal(const char *path, const Mesh *m, const Field *fields, int
     Grid g;
     memset(&g, 0, sizeof g);
     int axis = mesh_empty_axis(m);
-    int rc = axis >= 0 ? grid_2d(m, axis, &g, path, e) : grid_3d(m, &g, path, e);
+    int rc = axis >= 0 ? grid_2d(m, axis, &g, path, o->mesh_name ? o->mesh_name : path, e) : grid_3d(m, &g, path, e);
     if (rc == 0) {
         Arr *a = MEM_NEW(Arr, nfields);
         for (int i = 0; i < nfields; i++) a[i] = (Arr){fields[i].name, fields[i].width, fields[i].v};

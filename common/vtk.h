@@ -32,9 +32,11 @@ typedef struct VtkOpts {
     int point_data;    /* also write cell->point interpolated data */
     double time;       /* TimeValue */
     const char *title; /* second header line */
+    const char *mesh_name;  /* where the mesh was read from ("case/constant/polyMesh"): messages about a mesh
+                               that cannot be written name it; NULL names the output file */
 } VtkOpts;
 
-/* Defaults: binary, no point data, time 0, title "Kiesel". */
+/* Defaults: binary, no point data, time 0, title "Kiesel", no mesh name. */
 void vtk_opts_init(VtkOpts *o);
 
 /* The internal mesh with cell data. fields may be NULL when nfields == 0;

@@ -91,6 +91,8 @@ int vtkcase_open(VtkCase *v, const char *case_dir, const Mesh *m, const char *sp
     if (select_times(&v->times, case_dir, spec, latest, nozero, e) < 0) return -1;
     v->name = case_name(case_dir);
     v->index = time_indices(case_dir, v->times.all, v->times.nall);
+    v->mesh_dir = io_join(case_dir, "constant/polyMesh");
+    v->opts.mesh_name = v->mesh_dir;
     return 0;
 }
 
@@ -99,6 +101,7 @@ void vtkcase_free(VtkCase *v)
     runtime_free_sel(&v->times);
     free(v->name);
     free(v->index);
+    free(v->mesh_dir);
     memset(v, 0, sizeof *v);
 }
 

@@ -35,7 +35,8 @@ typedef struct VtkCase {
     char *name;        /* <case> */
     TimeSel times;     /* every time, and those to convert */
     long *index;       /* per time of times.all */
-    VtkOpts opts;      /* binary, point_data; time and title set per file */
+    VtkOpts opts;      /* binary, point_data; time and title set per file; mesh_name is mesh_dir */
+    char *mesh_dir;    /* <case>/constant/polyMesh, for messages about the mesh */
     int boundary;      /* write the patches */
 } VtkCase;
 

@@ -546,6 +546,114 @@ TEST(unknown_type_kept_verbatim)
     free_mesh(&m);
 }
 
+/* issue 9: nothing read is lost on a rewrite: top-level entries in their
+   places, #include'd values, boundaryField entries no patch takes (a
+   name the mesh lacks gets a warning with its line); the rewrite is
+   stable, ascii and binary. */
+TEST(unknown_entries_kept)
+{
+    Mesh m;
+    build_mesh(&m, 2, 2);
+    /* head: 7 lines; ghost on line 17 */
+    char *path = write_case_file("#include \"I\"\nrefVal $initVal;\ndimensions [0 0 0 1 0 0 0];\n"
+                                 "userEntry (1 2 3);\ninternalField uniform 1;\nbetween 5;\nboundaryField\n{\n"
+                                 "    \".*\" { type zeroGradient; }\n"
+                                 "    ghost { type fixedValue; value uniform 7; }\n"
+                                 "    lid { type slip; }\n    top { type zeroGradient; }\n"
+                                 "    \"(nothing|none)\" { type slip; }\n}\ntail { a 1; b (1 2); }\n");
+    char *inc = mem_strdup(path);
+    strcpy(strrchr(inc, '/') + 1, "I");
+    write_text(inc, "initVal 3;\n");
+    Field f, g;
+    Err e;
+    int rc = field_read(&f, &m, path, &e);
+    EXPECT(rc == 0, "%s", e.msg);
+    if (rc) goto out;
+    size_t nk[5];
+    for (int k = 0; k < 4; k++) nk[k] = f.keep[k] ? f.keep[k]->n : 0;
+    nk[4] = f.keep_bf ? f.keep_bf->n : 0;
+    EXPECT(nk[0] == 2 && nk[1] == 1 && nk[2] == 1 && nk[3] == 1 && nk[4] == 3, "kept %zu %zu %zu %zu, bf %zu", nk[0],
+           nk[1], nk[2], nk[3], nk[4]);
+    EXPECT(f.nwarn == 1, "%d warnings", f.nwarn);
+    char want[700];
+    snprintf(want, sizeof want, "%s:17: boundaryField entry 'ghost' names no patch or patch group of the mesh", path);
+    if (f.nwarn == 1) CONTAINS(f.warn[0], want);
+    FieldWriteOpts o = {0, 0, 0, "0"};
+    EXPECT(field_write(&f, &m, path, &o, &e) == 0, "%s", e.msg);
+    char *t1 = read_text(path);
+    CONTAINS(t1, "initVal         3;\n\nrefVal          3;\n\ndimensions      [0 0 0 1 0 0 0];\n\n\n"
+                 "userEntry       (1 2 3);\n\ninternalField   uniform 1;\n\nbetween         5;\n\nboundaryField\n{\n");
+    CONTAINS(t1, "    ghost\n    {\n        type            fixedValue;\n        value           uniform 7;\n    }\n"
+                 "    lid\n    {\n        type            slip;\n    }\n    \"(nothing|none)\"\n    {\n");
+    CONTAINS(t1, "}\n\ntail\n{\n    a               1;\n    b               (1 2);\n}\n");
+    /* read back and written again: the same text */
+    rc = field_read(&g, &m, path, &e);
+    EXPECT(rc == 0, "re-read: %s", e.msg);
+    if (rc == 0) {
+        EXPECT(g.nwarn == 1, "re-read: %d warnings", g.nwarn);
+        EXPECT(field_write(&g, &m, path, &o, &e) == 0, "%s", e.msg);
+        char *t2 = read_text(path);
+        EXPECT(t2 && strcmp(t1, t2) == 0, "second rewrite differs:\n%s", t2 ? t2 : "");
+        free(t2);
+        field_free(&g);
+    }
+    /* binary: the kept list reads back */
+    FieldWriteOpts ob = {1, 0, 0, "0"};
+    EXPECT(field_write(&f, &m, path, &ob, &e) == 0, "%s", e.msg);
+    rc = field_read(&g, &m, path, &e);
+    EXPECT(rc == 0, "binary re-read: %s", e.msg);
+    if (rc == 0) {
+        double u[3] = {0, 0, 0};
+        EXPECT(g.keep[1] && dict_vector(g.keep[1], "userEntry", u, &e) == 0 && u[0] == 1 && u[2] == 3,
+               "userEntry lost in binary");
+        EXPECT(g.keep_bf && dict_find(g.keep_bf, "ghost") && g.keep_bf->entries[2].is_regex, "kept patch entries lost");
+        field_free(&g);
+    }
+    free(t1);
+    field_free(&f);
+    /* a value without a keyword cannot be written back: refused */
+    free(path);
+    path = write_case_file("dimensions [0 0 0 1 0 0 0];\ninternalField uniform 1;\n3 (1 2 3);\n"
+                           "boundaryField { \".*\" { type zeroGradient; } }\n");
+    EXPECT(field_read(&f, &m, path, &e) == -1, "keyword-less value accepted");
+    snprintf(want, sizeof want, "%s:10: a value without a keyword in a field file", path);
+    EXPECT(strcmp(e.msg, want) == 0, "got '%s', expected '%s'", e.msg, want);
+out:
+    free(path);
+    free(inc);
+    free_mesh(&m);
+}
+
+/* issue 9: a nan or inf written as a word is named with its own line,
+   its cell and its text */
+TEST(nonfinite_word_named)
+{
+    Mesh m;
+    build_mesh(&m, 2, 2);
+    Field f;
+    Err e;
+    char *path = write_case_file("dimensions [0 0 0 1 0 0 0];\ninternalField nonuniform List<scalar>\n4\n(\n1\n2\nnan\n4\n)\n;\n"
+                                 "boundaryField { \".*\" { type zeroGradient; } }\n");
+    char want[700];
+    snprintf(want, sizeof want, "%s:14: internalField has a non-finite value (nan or inf) at index 2: cell 2 is 'nan', "
+             "not a finite number", path);
+    EXPECT(field_read(&f, &m, path, &e) == -1 && strcmp(e.msg, want) == 0, "got '%s', expected '%s'", e.msg, want);
+    free(path);
+    path = write_case_file("dimensions [0 0 0 1 0 0 0];\ninternalField uniform 1;\nboundaryField\n{\n"
+                           "    \".*\" { type zeroGradient; }\n    left { type fixedValue;\n value uniform -Infinity; }\n}\n");
+    snprintf(want, sizeof want, "%s:14: boundaryField.left.value has a non-finite value (nan or inf) at index 0: the "
+             "uniform value holds '-Infinity', not a finite number", path);
+    EXPECT(field_read(&f, &m, path, &e) == -1 && strcmp(e.msg, want) == 0, "got '%s', expected '%s'", e.msg, want);
+    free(path);
+    /* a word that only starts like nan is not a number either, and says so */
+    path = write_case_file("dimensions [0 0 0 1 0 0 0];\ninternalField nonuniform List<scalar> 4(1 2 nanx 4);\n"
+                           "boundaryField { \".*\" { type zeroGradient; } }\n");
+    EXPECT(field_read(&f, &m, path, &e) == -1, "nanx accepted");
+    CONTAINS(e.msg, "item 2 of the list: expected a number, found word 'nanx'");
+    free(path);
+    free_mesh(&m);
+}
+
 TEST(dimension_units)
 {
     Mesh m;
@@ -880,6 +988,8 @@ int main(void)
     RUN(count_and_class_errors);
     RUN(nonfinite_refused);
     RUN(unknown_type_kept_verbatim);
+    RUN(unknown_entries_kept);
+    RUN(nonfinite_word_named);
     RUN(dimension_units);
     RUN(patch_values_by_type);
     RUN(init_and_probe);

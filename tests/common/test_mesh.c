@@ -612,6 +612,54 @@ TEST(wrong_counts)
     CONTAINS(e.msg, "points");
 }
 
+/* The small mesh's points file with point k's line replaced by `line`:
+   header on line 1, the size on 2, '(' on 3, point k on line 4 + k. */
+static void points_text(Buf *b, const char *cls, int k, const char *line)
+{
+    Mesh m;
+    build_small(&m);
+    buf_printf(b, "FoamFile { version 2.0; format ascii; class %s; object points; }\n%d\n(\n", cls, m.npoints);
+    for (int i = 0; i < m.npoints; i++) {
+        if (i == k) buf_printf(b, "%s\n", line);
+        else buf_printf(b, "(%.17g %.17g %.17g)\n", m.points[3 * i], m.points[3 * i + 1], m.points[3 * i + 2]);
+    }
+    buf_puts(b, ")\n");
+    mesh_free(&m);
+}
+
+/* issue 9: a point coordinate written nan or inf is named with the file,
+   its line and the point; a polyMesh file of the wrong class is refused
+   as OpenFOAM refuses it; a header error names the polyMesh file. */
+TEST(nonfinite_points_and_classes)
+{
+    Err e;
+    Buf b;
+    buf_init(&b);
+    points_text(&b, "vectorField", 5, "(nan 0 0)");
+    EXPECT(read_altered("nan_pts", 0, "points", -1, b.p, &e) != 0, "nan point accepted");
+    CONTAINS(e.msg, "/nan_pts/points:9: point 5: coordinate 'nan' is not a finite number");
+    buf_clear(&b);
+    points_text(&b, "vectorField", 0, "(0 -Inf 0)");
+    EXPECT(read_altered("inf_pts", 0, "points", -1, b.p, &e) != 0, "inf point accepted");
+    CONTAINS(e.msg, "/inf_pts/points:4: point 0: coordinate '-Inf' is not a finite number");
+    buf_clear(&b);
+    points_text(&b, "labelList", 0, "(0 0 0)");
+    EXPECT(read_altered("cls_pts", 0, "points", -1, b.p, &e) != 0, "points of class labelList accepted");
+    CONTAINS(e.msg, "/cls_pts/points:1: unexpected class labelList in the FoamFile header, expected vectorField");
+    buf_clear(&b);
+    points_text(&b, "dictionary", -1, "");
+    EXPECT(read_altered("dict_pts", 0, "points", -1, b.p, &e) == 0, "class dictionary refused (OpenFOAM accepts "
+                                                                    "it): %s", e.msg);
+    buf_free(&b);
+    const char *own = "FoamFile\n{\n    version 2.0 nan;\n    format ascii;\n    class labelList;\n    object owner;\n}\n"
+                      "0()\n";
+    EXPECT(read_altered("hdr_own", 0, "owner", -1, own, &e) != 0, "bad header accepted");
+    CONTAINS(e.msg, "/hdr_own/owner:3: FoamFile header: entry 'version' has 1 excess token");
+    own = "FoamFile { version 2.0; format ascii; object owner; }\n0()\n";
+    EXPECT(read_altered("nocls_own", 0, "owner", -1, own, &e) != 0, "header without class accepted");
+    CONTAINS(e.msg, "/nocls_own/owner:1: FoamFile header has no class (expected labelList)");
+}
+
 TEST(missing_dir)
 {
     Mesh r;
@@ -924,6 +972,7 @@ int main(void)
     RUN(stream_garbage);
     RUN(truncated_binary);
     RUN(wrong_counts);
+    RUN(nonfinite_points_and_classes);
     RUN(missing_dir);
     RUN(check_invariants);
     RUN(check_inverted_cell);

@@ -6,7 +6,8 @@
 ** nothing is written unless the dictionary and every field are good.
 **
 ** Times: the -time/-latestTime/-noZero selection, else controlDict's start
-** time (runtime_pick_times).
+** time (runtime_pick_times).  The fields' warnings (a boundaryField entry
+** naming no patch, kept and written back) go to stderr.
 */
 #include "args.h"
 #include "err.h"
@@ -18,11 +19,24 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static const ArgDict dicts[] = {{"system/setFieldsDict", setfields_keys, setfields_help}, {0}};
 
 static const ToolInfo tool = {"setFields", "sets field values in boxes, spheres, cylinders, cones, half-spaces",
                               NULL, dicts, 1};
+
+/* The library's warnings, one per line, to stderr. */
+static void print_warnings(Buf *warn)
+{
+    for (char *l = warn->p, *nl; l && *l; l = nl + 1) {
+        nl = strchr(l, '\n');
+        if (!nl) break;
+        *nl = '\0';
+        err_warn("%s", l);
+    }
+    buf_clear(warn);
+}
 
 int main(int argc, char **argv)
 {
@@ -57,14 +71,18 @@ int main(int argc, char **argv)
     fwrite(log.p, 1, log.n, a.info);
     buf_clear(&log);
 
+    Buf warn;
+    buf_init(&warn);
     for (int i = 0; i < ts.n; i++) {
         const char *time = runtime_sel_time(&ts, i)->name;
         log_time(&a, time);
-        int rc = setfields_time(&s, &m, a.case_dir, time, &wo, &log, &e);
+        int rc = setfields_time(&s, &m, a.case_dir, time, &wo, &log, &warn, &e);
         fwrite(log.p, 1, log.n, a.info);
         buf_clear(&log);
+        print_warnings(&warn);
         if (rc) err_die(&e);
     }
+    buf_free(&warn);
 
     log_exec(&a);
     log_end(&a);

@@ -5,8 +5,9 @@
 **
 ** Fields are the vol fields of each time (field_read_dir), in name order;
 ** -fields restricts them, and a listed field whose file is not a vol field
-** is an error.  The VTK directory is touched only once the mesh and the
-** time selection are known to be good.
+** is an error; the fields' warnings (a boundaryField entry naming no
+** patch, ...) go to stderr.  The VTK directory is touched only once the
+** mesh and the time selection are known to be good.
 */
 #include "args.h"
 #include "err.h"
@@ -64,6 +65,8 @@ int main(int argc, char **argv)
         Field *f;
         int nf = vtkcase_read_fields(&v, s, (const char *const *)want, nwant, &f, &log, &e);
         if (nf < 0) err_die(&e);
+        for (int j = 0; j < nf; j++)
+            for (int k = 0; k < f[j].nwarn; k++) err_warn("%s", f[j].warn[k]);
         for (int i = 0; i < nwant; i++)
             for (int j = 0; j < nf; j++) seen[i] |= !strcmp(want[i], f[j].name);
         int rc = vtkcase_write_time(&v, s, f, nf, &log, &e);

@@ -289,6 +289,42 @@ EOF
 )
 check setFields_time close "$s" 1 1e-12
 
+# ---- what setFields does not interpret is written back (issue 9) ----
+# A user entry, an entry after boundaryField and a boundaryField entry for
+# a patch the grid lacks survive the rewrite (OpenFOAM's setFields drops
+# them); the unknown patch is a warning with its file and line.
+cat >c/0/beta <<'EOF'
+FoamFile { version 2.0; format ascii; class volScalarField; object beta; }
+userEntry (1 2 3);
+dimensions [0 0 0 0 0 0 0];
+internalField uniform 0;
+boundaryField
+{
+    ".*" { type zeroGradient; }
+    ghost { type fixedValue; value uniform 7; }
+}
+tail { a 1; }
+EOF
+printf 'defaultFieldValues ( volScalarFieldValue beta 1 );\n' >keep.dict
+err=$("$BIN/setFields" -case c -dict keep.dict 2>&1 >/dev/null); rc=$?
+check setFields_keeps_entries $PY - c/0/beta "$rc" <<'EOF'
+import re, sys
+t = open(sys.argv[1]).read()
+ok = sys.argv[2] == "0" and re.search(r"\nuserEntry\s+\(1 2 3\);", t) and re.search(r"\ninternalField\s+uniform 1;", t) \
+    and re.search(r"\n    ghost\n    \{\n\s+type\s+fixedValue;\n\s+value\s+uniform 7;\n    \}", t) \
+    and re.search(r"\ntail\n\{\n\s+a\s+1;\n\}", t)
+sys.exit(0 if ok else 1)
+EOF
+check setFields_unknown_patch_warns test -n "$(grep -F "Warning: c/0/beta:8: boundaryField entry 'ghost' names no patch or patch group of the mesh" <<<"$err")"
+# a broken FoamFile header is an error at its line, and nothing is written
+sed -i '0,/version .*;/s//version 2.0 nan;/' c/0/beta
+ln=$(grep -n 'version 2.0 nan;' c/0/beta | cut -d: -f1)
+cp c/0/beta beta.orig
+err=$("$BIN/setFields" -case c -dict keep.dict 2>&1 >/dev/null); rc=$?
+check setFields_bad_header test "$rc" -ne 0 -a -n "$(grep -F "c/0/beta:$ln: FoamFile header: entry 'version' has 1 excess token" <<<"$err")"
+check setFields_bad_header_untouched cmp -s c/0/beta beta.orig
+rm -f c/0/beta
+
 # ---- bad input: file:line message, exit 1, fields untouched ----
 cp alpha.orig c/0/alpha.s
 cp U.orig c/0/U

@@ -146,6 +146,31 @@ out=$("$TOOL" -case bad -time 0.1 2>&1); rc=$?
 check broken_field "rc $rc: $out" test "$rc" -ne 0 -a -n "$(grep -E 'bad/0.1/p:[0-9]+: ' <<<"$out")"
 check broken_field_keeps_output "bad_10.vtk changed" cmp -s before.vtk bad/VTK/bad_10.vtk
 
+# ---- broken input points: the message names the input, not the output (issue 9) ----
+mkcase bp 2d
+pts=bp/constant/polyMesh/points
+cp $pts points.orig
+# point 12, (0 0 0.1), moved so that cell 0's front face turns to -z: two lower faces
+ln=$(grep -n '^(0 0 0.1' $pts | head -n 1 | cut -d: -f1)
+sed -i "${ln}s/.*/(0.5 0.4 0.1)/" $pts
+out=$("$TOOL" -case bp 2>&1); rc=$?
+check broken_points_name_input "rc $rc: $out" test "$rc" -ne 0 \
+    -a -n "$(grep -F 'bp/constant/polyMesh: 2-D mesh: cell 0 has two faces (' <<<"$out")" -a -z "$(grep -F 'VTK/' <<<"$out")"
+# a coordinate written nan: the points file, its line and the point
+cp points.orig $pts
+ln=$(grep -n '^(0 0 0)$' $pts | head -n 1 | cut -d: -f1)
+sed -i "${ln}s/.*/(nan 0 0)/" $pts
+out=$("$TOOL" -case bp 2>&1); rc=$?
+check nan_point_names_line "rc $rc: $out" test "$rc" -ne 0 \
+    -a -n "$(grep -F "bp/constant/polyMesh/points:$ln: point 0: coordinate 'nan' is not a finite number" <<<"$out")"
+# NaN in a field's internalField: the field file, the line of the value and the cell
+cp points.orig $pts
+ln=$(( $(grep -n '^internalField' bp/0.1/U | cut -d: -f1) + 3 ))
+sed -i "${ln}s/.*/(0.1 NaN 0)/" bp/0.1/U
+out=$("$TOOL" -case bp -time 0.1 2>&1); rc=$?
+check nan_field_names_line "rc $rc: $out" test "$rc" -ne 0 \
+    -a -n "$(grep -F "bp/0.1/U:$ln: internalField has a non-finite value (nan or inf) at index 0: cell 0 is 'NaN', not a finite number" <<<"$out")"
+
 # ---- foamToVTK -legacy: same layout and cell count ----
 if command -v foamToVTK >/dev/null 2>&1; then
     mkcase of
