@@ -126,6 +126,14 @@ printf 'a $nothere;\n' >bad3.dict
 expect_error error_undefined_variable "bad3.dict:1: undefined variable \$nothere" bad3.dict
 printf 'a 1;\n#calc "1+1"\n' >bad4.dict
 expect_error error_unsupported_directive "bad4.dict:2: directive #calc is not supported" bad4.dict
+# issue 9: the FoamFile header is checked as OpenFOAM checks it, and a
+# list size is checked where the list is read, not only where it is used
+printf 'FoamFile\n{\n    version 2.0;\n    format ascii\n    class dictionary;\n    object x;\n}\na 1;\n' >bad5.dict
+expect_error error_header_missing_semicolon "bad5.dict:4: FoamFile header: entry 'format' has 2 excess tokens" bad5.dict
+printf 'FoamFile { version 2.0 nan; format ascii; class dictionary; object x; }\na 1;\n' >bad6.dict
+expect_error error_header_excess_token "bad6.dict:1: FoamFile header: entry 'version' has 1 excess token (word 'nan'...)" bad6.dict
+printf 'FoamFile { version 2.0; format ascii; class dictionary; object x; }\nlist 3 ( 1 2 );\nb 1;\n' >bad7.dict
+expect_error error_list_size "bad7.dict:2: keyword 'list': list size 3 does not match the 2 items read" -entry b bad7.dict
 expect_error error_missing_entry "entry 'nope' not found" -entry nope case/system/controlDict
 expect_error error_missing_file "nosuchfile" nosuchfile
 expect_error error_no_file "expected one dictionary file"
