@@ -498,6 +498,15 @@ TEST(two_d_inconsistent_empty_sides)
     EXPECT(vtk_write_internal(path, &m, NULL, 0, NULL, &e) == -1, "accepted");
     CONTAINS(e.msg, "bad2d.vtk: 2-D mesh: cell 0 has no face on the lower empty side");
     EXPECT(!io_exists(path), "file written despite the error");
+    /* with the mesh's name, the message names the input, not the output
+       (issue 9: the fault is in the faces or points read) */
+    VtkOpts o;
+    vtk_opts_init(&o);
+    o.mesh_name = "c/constant/polyMesh";
+    EXPECT(vtk_write_internal(path, &m, NULL, 0, &o, &e) == -1, "accepted");
+    EXPECT(strncmp(e.msg, "c/constant/polyMesh: 2-D mesh: cell 0 has no face on the lower empty side", 73) == 0 &&
+               !strstr(e.msg, "bad2d"),
+           "%s", e.msg);
     free(path);
     mesh_free(&m);
 }
