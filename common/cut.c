@@ -277,27 +277,6 @@ static void line_crossings(Ctx *c, Line *l, int a, const double p[3])
     }
 }
 
-/* The crossing nearest the fluid end on the copy of edge (p0, along a to
-   xhi) moved by off along axis b, when the copy's ends are fluid and
-   solid like the edge's. */
-static int moved_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, int b, double off,
-                     double *s, int *leaf)
-{
-    double q0[3] = {p0[0], p0[1], p0[2]}, q1[3];
-    q0[b] += off;
-    memcpy(q1, q0, sizeof q1);
-    q1[a] = xhi;
-    if (geometry_fluid(c->g, q0) != fluid_lo || geometry_fluid(c->g, q1) == fluid_lo) return 0;
-    GeoCross cr[8];
-    int k = geometry_crossings(c->g, q0, q1, cr, 8), found = 0;
-    double xf = fluid_lo ? p0[a] : xhi;
-    for (int r = 0; r < k && r < 8; r++) {
-        double x = p0[a] + cr[r].t * (xhi - p0[a]);
-        if (!found || fabs(x - xf) < fabs(*s - xf)) *s = x, *leaf = cr[r].leaf;
-        found = 1;
-    }
-    return found;
-}
 
 /* The crossing on an unmoved edge from crossings s[0..2] on copies
    moved by 1, 2 and 4 times a small offset (n of them found): quadratic
@@ -314,6 +293,36 @@ static double extrapolate(const double s[3], int n)
     double r = (s[2] - s[1]) / (s[1] - s[0]);
     if (fabs(r - M_SQRT2) < 0.1) return (M_SQRT2 * s[0] - s[1]) / (M_SQRT2 - 1);
     return (8 * s[0] - 6 * s[1] + s[2]) / 3;
+}
+
+/* The crossing on the copy of edge (p0, along a to xhi) moved by off,
+   nearest its fluid end, when the copy's ends are fluid and solid like
+   the edge's. */
+static int shifted_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, const double off[3],
+                       double *s, int *leaf)
+{
+    double q0[3], q1[3];
+    for (int k = 0; k < 3; k++) q0[k] = p0[k] + off[k];
+    memcpy(q1, q0, sizeof q1);
+    q1[a] = xhi;
+    /* the ends are judged a probe's way in, as local_fluid judges corners
+       (an end may be a corner of the geometry) */
+    double t0[3], t1[3], eta = fmin(PROBE * c->snap, 0.25) * (xhi - p0[a]) / 2;
+    memcpy(t0, q0, sizeof t0);
+    memcpy(t1, q1, sizeof t1);
+    t0[a] += eta;
+    t1[a] -= eta;
+    if (geometry_fluid(c->g, t0) != fluid_lo || geometry_fluid(c->g, t1) == fluid_lo) return 0;
+    GeoCross cr[8];
+    int k = geometry_crossings(c->g, q0, q1, cr, 8), found = 0;
+    double xf = fluid_lo ? p0[a] : xhi;
+    for (int r = 0; r < k && r < 8; r++) {
+        double x = p0[a] + cr[r].t * (xhi - p0[a]);
+        if (x < t0[a] || x > t1[a]) continue; /* beyond the probes: another surface through an end */
+        if (!found || fabs(x - xf) < fabs(*s - xf)) *s = x, *leaf = cr[r].leaf;
+        found = 1;
+    }
+    return found;
 }
 
 /* An extrapolated crossing s on the edge xlo..xhi, put on an end it lies
@@ -337,17 +346,23 @@ static double settle(const Ctx *c, double s, double xlo, double xhi)
    Returns 0 when no copy crosses. */
 static int offset_cut(const Ctx *c, int a, int64_t v, int fluid_lo, double *s, int *leaf)
 {
-    int ijk[3], found = 0;
+    int ijk[3], found = 0, u = (a + 1) % 3, w = (a + 2) % 3;
     vertex_ijk(c, v, ijk);
     double p0[3] = {c->x[0][ijk[0]], c->x[1][ijk[1]], c->x[2][ijk[2]]};
-    double xhi = c->x[a][ijk[a] + 1], xf = fluid_lo ? p0[a] : xhi;
-    for (int d = 0; d < 4; d++) {
-        int b = (a + 1 + d / 2) % 3, l1, l2;
+    double xhi = c->x[a][ijk[a] + 1], xf = fluid_lo ? p0[a] : xhi, h[3] = {0, 0, 0};
+    for (int b = 0; b < 3; b++) {
         int lo = ijk[b] < c->n[b] ? ijk[b] : ijk[b] - 1;
-        double h = c->x[b][lo + 1] - c->x[b][lo];
-        double off = (d & 1 ? -1 : 1) * OFFSET * c->snap * h, sk[3];
-        int nk = 0;
-        while (nk < 3 && moved_cut(c, a, p0, xhi, fluid_lo, b, (1 << nk) * off, &sk[nk], nk ? &l2 : &l1)) nk++;
+        h[b] = c->x[b][lo + 1] - c->x[b][lo];
+    }
+    for (int d = 0; d < 4; d++) {
+        double off[3] = {0, 0, 0}, sk[3];
+        off[u] = (d & 1 ? -1 : 1) * OFFSET * c->snap * h[u];
+        off[w] = (d & 2 ? -1 : 1) * OFFSET * c->snap * h[w];
+        int nk = 0, l1 = -1, l2;
+        while (nk < 3 && shifted_cut(c, a, p0, xhi, fluid_lo, off, &sk[nk], nk ? &l2 : &l1)) {
+            for (int b = 0; b < 3; b++) off[b] *= 2;
+            nk++;
+        }
         if (!nk) continue;
         double s1 = settle(c, extrapolate(sk, nk), p0[a], xhi);
         if (!found || fabs(s1 - xf) < fabs(*s - xf)) *s = s1, *leaf = l1;
@@ -569,8 +584,8 @@ static void snap(Ctx *c)
             mem_grow((void **)&list, &lcap, nl + 1, sizeof *list);
             list[nl++] = v;
         }
-    for (int round = 0; nl && round < 8; round++) {
-        solidify(c, list, nl);
+    for (int round = 0; round < 8 && (round == 0 || nl); round++) {
+        if (nl) solidify(c, list, nl);
         nl = 0;
         for (size_t i = 0; i < c->cap; i++) {
             CutPt *p = &c->tab[i];
@@ -1155,27 +1170,6 @@ static void local_masks(Ctx *c)
             }
 }
 
-/* The crossing on the copy of edge (p0, along a to xhi) moved by off,
-   nearest its fluid end, when the copy's ends are fluid and solid like
-   the edge's. */
-static int shifted_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, const double off[3],
-                       double *s, int *leaf)
-{
-    double q0[3], q1[3];
-    for (int k = 0; k < 3; k++) q0[k] = p0[k] + off[k];
-    memcpy(q1, q0, sizeof q1);
-    q1[a] = xhi;
-    if (geometry_fluid(c->g, q0) != fluid_lo || geometry_fluid(c->g, q1) == fluid_lo) return 0;
-    GeoCross cr[8];
-    int k = geometry_crossings(c->g, q0, q1, cr, 8), found = 0;
-    double xf = fluid_lo ? p0[a] : xhi;
-    for (int r = 0; r < k && r < 8; r++) {
-        double x = p0[a] + cr[r].t * (xhi - p0[a]);
-        if (!found || fabs(x - xf) < fabs(*s - xf)) *s = x, *leaf = cr[r].leaf;
-        found = 1;
-    }
-    return found;
-}
 
 /* The point of the edge from corner q of cell (i, j, k) along a, whose
    ends the cell sees differently though neither is fluid for the grid (an
@@ -1186,31 +1180,19 @@ static int shifted_cut(const Ctx *c, int a, const double p0[3], double xhi, int 
 static void side_point(Ctx *c, const int ijk[3], int q, int a, int fluid_lo)
 {
     int64_t v = cell_corner(c, cell_base(c, ijk[0], ijk[1], ijk[2]), q);
-    int vi[3];
+    int vi[3], l1 = -1;
     vertex_ijk(c, v, vi);
-    double p0[3] = {c->x[0][vi[0]], c->x[1][vi[1]], c->x[2][vi[2]]}, xhi = c->x[a][vi[a] + 1];
-    double h = xhi - p0[a], off[3] = {0, 0, 0}, sk[3], s1;
-    for (int b = 0; b < 3; b++)
-        if (b != a) off[b] = ((q >> b) & 1 ? -1 : 1) * OFFSET * c->snap * (c->x[b][ijk[b] + 1] - c->x[b][ijk[b]]);
-    int l1, l2, nk = 0;
-    CutPt *p;
-    while (nk < 3 && shifted_cut(c, a, p0, xhi, fluid_lo, off, &sk[nk], nk ? &l2 : &l1)) {
-        for (int b = 0; b < 3; b++) off[b] *= 2;
-        nk++;
-    }
-    if (nk) {
-        s1 = settle(c, extrapolate(sk, nk), p0[a], xhi);
-    } else if (!offset_cut(c, a, v, fluid_lo, &s1, &l1)) {
+    double xlo = c->x[a][vi[a]], xhi = c->x[a][vi[a] + 1], h = xhi - xlo, s1;
+    CutPt *p = cut_insert(c, 3 * v + a);
+    if (!offset_cut(c, a, v, fluid_lo, &s1, &l1)) {
         c->st->ninconsistent++;
-        p = cut_insert(c, 3 * v + a);
         p->at = fluid_lo ? 1 : 0;
-        p->s = fluid_lo ? xhi : p0[a];
+        p->s = fluid_lo ? xhi : xlo;
         return;
     }
-    p = cut_insert(c, 3 * v + a);
     p->leaf = l1;
-    p->s = fmin(fmax(s1, p0[a]), xhi);
-    if (p->s == p0[a] || p->s - p0[a] < c->snap * h) p->at = 0, p->s = p0[a];
+    p->s = fmin(fmax(s1, xlo), xhi);
+    if (p->s == xlo || p->s - xlo < c->snap * h) p->at = 0, p->s = xlo;
     else if (p->s == xhi || xhi - p->s < c->snap * h) p->at = 1, p->s = xhi;
 }
 
