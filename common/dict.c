@@ -1710,6 +1710,9 @@ static int merge_var(Parser *P, Dict *d, int line)
         return -1;
     }
     int rc = copy_budget(P, d, en, name, line);
+    if (rc == 0 && P->depth == P->depth0 && find_own(en->dict, "FoamFile", 0))
+        rc = perr(P, line, "$%s would bring a FoamFile header into the top level, where only the file's own "
+                           "header may be", name);
     free(name);
     if (rc) return -1;
     Dict *copy = dict_copy(en->dict, d, "");

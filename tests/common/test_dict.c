@@ -606,6 +606,8 @@ TEST(header_checks)
         {"a 1;\nFoamFile { format ascii; object x; }\n",
          "test.dict:2: FoamFile header after other entries: it must come first, as OpenFOAM reads it"},
         {"FoamFile 3;\n", "test.dict:1: FoamFile header must be a dictionary"},
+        {"a { FoamFile { format ascii; object x; } }\n$a;\n",
+         "test.dict:2: $a would bring a FoamFile header into the top level"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         const char *msg = parse_error(bad[i].text);
