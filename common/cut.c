@@ -127,7 +127,6 @@ typedef struct Ctx {
     int64_t sc[3]; /* cell strides */
     char *cls;     /* per vertex: 1 fluid, 0 solid (2: snapping) */
     char *onsurf;  /* per vertex: 1 when on the surface (within snap) */
-    char *cand;    /* per vertex: 1 when a crossing is near (detect_surface) */
     unsigned char *lmask; /* per Cartesian cell: its fluid corners (bit q), local_masks */
     int *vpt;      /* per vertex: mesh point or -1 */
     int *cellid;   /* per Cartesian cell: new cell or -1 */
@@ -201,12 +200,6 @@ static void vertex_ijk(const Ctx *c, int64_t v, int ijk[3])
     ijk[2] = (int)(v / ((int64_t)c->nv[0] * c->nv[1]));
 }
 
-/* Corner q of the cell with base vertex v0 (bit k: upper along axis k). */
-static int64_t cell_corner(const Ctx *c, int64_t v0, int q)
-{
-    return v0 + (q & 1) * c->sv[0] + ((q >> 1) & 1) * c->sv[1] + (q >> 2) * c->sv[2];
-}
-
 static int vertex_point(Ctx *c, int64_t v)
 {
     if (c->vpt[v] < 0) {
@@ -277,6 +270,27 @@ static void line_crossings(Ctx *c, Line *l, int a, const double p[3])
     }
 }
 
+/* The crossing nearest the fluid end on the copy of edge (p0, along a to
+   xhi) moved by off along axis b, when the copy's ends are fluid and
+   solid like the edge's. */
+static int moved_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, int b, double off,
+                     double *s, int *leaf)
+{
+    double q0[3] = {p0[0], p0[1], p0[2]}, q1[3];
+    q0[b] += off;
+    memcpy(q1, q0, sizeof q1);
+    q1[a] = xhi;
+    if (geometry_fluid(c->g, q0) != fluid_lo || geometry_fluid(c->g, q1) == fluid_lo) return 0;
+    GeoCross cr[8];
+    int k = geometry_crossings(c->g, q0, q1, cr, 8), found = 0;
+    double xf = fluid_lo ? p0[a] : xhi;
+    for (int r = 0; r < k && r < 8; r++) {
+        double x = p0[a] + cr[r].t * (xhi - p0[a]);
+        if (!found || fabs(x - xf) < fabs(*s - xf)) *s = x, *leaf = cr[r].leaf;
+        found = 1;
+    }
+    return found;
+}
 
 /* The crossing on an unmoved edge from crossings s[0..2] on copies
    moved by 1, 2 and 4 times a small offset (n of them found): quadratic
@@ -293,36 +307,6 @@ static double extrapolate(const double s[3], int n)
     double r = (s[2] - s[1]) / (s[1] - s[0]);
     if (fabs(r - M_SQRT2) < 0.1) return (M_SQRT2 * s[0] - s[1]) / (M_SQRT2 - 1);
     return (8 * s[0] - 6 * s[1] + s[2]) / 3;
-}
-
-/* The crossing on the copy of edge (p0, along a to xhi) moved by off,
-   nearest its fluid end, when the copy's ends are fluid and solid like
-   the edge's. */
-static int shifted_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, const double off[3],
-                       double *s, int *leaf)
-{
-    double q0[3], q1[3];
-    for (int k = 0; k < 3; k++) q0[k] = p0[k] + off[k];
-    memcpy(q1, q0, sizeof q1);
-    q1[a] = xhi;
-    /* the ends are judged a probe's way in, as local_fluid judges corners
-       (an end may be a corner of the geometry) */
-    double t0[3], t1[3], eta = fmin(PROBE * c->snap, 0.25) * (xhi - p0[a]) / 2;
-    memcpy(t0, q0, sizeof t0);
-    memcpy(t1, q1, sizeof t1);
-    t0[a] += eta;
-    t1[a] -= eta;
-    if (geometry_fluid(c->g, t0) != fluid_lo || geometry_fluid(c->g, t1) == fluid_lo) return 0;
-    GeoCross cr[8];
-    int k = geometry_crossings(c->g, q0, q1, cr, 8), found = 0;
-    double xf = fluid_lo ? p0[a] : xhi;
-    for (int r = 0; r < k && r < 8; r++) {
-        double x = p0[a] + cr[r].t * (xhi - p0[a]);
-        if (x < t0[a] || x > t1[a]) continue; /* beyond the probes: another surface through an end */
-        if (!found || fabs(x - xf) < fabs(*s - xf)) *s = x, *leaf = cr[r].leaf;
-        found = 1;
-    }
-    return found;
 }
 
 /* An extrapolated crossing s on the edge xlo..xhi, put on an end it lies
@@ -346,23 +330,17 @@ static double settle(const Ctx *c, double s, double xlo, double xhi)
    Returns 0 when no copy crosses. */
 static int offset_cut(const Ctx *c, int a, int64_t v, int fluid_lo, double *s, int *leaf)
 {
-    int ijk[3], found = 0, u = (a + 1) % 3, w = (a + 2) % 3;
+    int ijk[3], found = 0;
     vertex_ijk(c, v, ijk);
     double p0[3] = {c->x[0][ijk[0]], c->x[1][ijk[1]], c->x[2][ijk[2]]};
-    double xhi = c->x[a][ijk[a] + 1], xf = fluid_lo ? p0[a] : xhi, h[3] = {0, 0, 0};
-    for (int b = 0; b < 3; b++) {
-        int lo = ijk[b] < c->n[b] ? ijk[b] : ijk[b] - 1;
-        h[b] = c->x[b][lo + 1] - c->x[b][lo];
-    }
+    double xhi = c->x[a][ijk[a] + 1], xf = fluid_lo ? p0[a] : xhi;
     for (int d = 0; d < 4; d++) {
-        double off[3] = {0, 0, 0}, sk[3];
-        off[u] = (d & 1 ? -1 : 1) * OFFSET * c->snap * h[u];
-        off[w] = (d & 2 ? -1 : 1) * OFFSET * c->snap * h[w];
-        int nk = 0, l1 = -1, l2;
-        while (nk < 3 && shifted_cut(c, a, p0, xhi, fluid_lo, off, &sk[nk], nk ? &l2 : &l1)) {
-            for (int b = 0; b < 3; b++) off[b] *= 2;
-            nk++;
-        }
+        int b = (a + 1 + d / 2) % 3, l1, l2;
+        int lo = ijk[b] < c->n[b] ? ijk[b] : ijk[b] - 1;
+        double h = c->x[b][lo + 1] - c->x[b][lo];
+        double off = (d & 1 ? -1 : 1) * OFFSET * c->snap * h, sk[3];
+        int nk = 0;
+        while (nk < 3 && moved_cut(c, a, p0, xhi, fluid_lo, b, (1 << nk) * off, &sk[nk], nk ? &l2 : &l1)) nk++;
         if (!nk) continue;
         double s1 = settle(c, extrapolate(sk, nk), p0[a], xhi);
         if (!found || fabs(s1 - xf) < fabs(*s - xf)) *s = s1, *leaf = l1;
@@ -409,71 +387,6 @@ static void edge_cut(Ctx *c, const Line *l, int a, int i, int64_t va, int *lo)
     p->leaf = l->cr[best].leaf;
 }
 
-/* Vertices of the line from v0 along a that a crossing meets (within
-   the settle distance) lie on the surface, whatever their class: the
-   corners of a layer of the geometry exactly one cell thick are crossed
-   at both ends of their edges and at nothing in between. */
-static void mark_vertex_crossings(Ctx *c, const Line *l, int a, int64_t v0)
-{
-    const double *x = c->x[a];
-    int i = 0;
-    for (int r = 0; r < l->ncr; r++) {
-        while (i < c->n[a] && x[i + 1] <= l->s[r]) i++;
-        for (int e = i - 1; e <= i + 2; e++) {
-            if (e < 0 || e > c->n[a]) continue;
-            int lo = e < c->n[a] ? e : e - 1;
-            c->cand[v0 + e * c->sv[a]] = 1;
-            if (fabs(l->s[r] - x[e]) < EXTRA_SNAP * c->snap * (x[lo + 1] - x[lo])) c->onsurf[v0 + e * c->sv[a]] = 1;
-        }
-    }
-}
-
-/* Is vertex v on the surface: does a point PROBE snap distances from it
-   towards the centre of one of its cells differ from it?  It depends on
-   the geometry only, not on the flow side, so both sides find the same
-   vertices. */
-static int probe_differs(const Ctx *c, int64_t v)
-{
-    int ijk[3];
-    vertex_ijk(c, v, ijk);
-    double p[3] = {c->x[0][ijk[0]], c->x[1][ijk[1]], c->x[2][ijk[2]]}, eta = fmin(PROBE * c->snap, 0.25);
-    int f = geometry_fluid(c->g, p);
-    for (int q = 0; q < 8; q++) {
-        double y[3];
-        for (int a = 0; a < 3; a++) {
-            int e = ijk[a] + ((q >> a) & 1 ? 1 : -1);
-            if (e < 0 || e > c->n[a]) e = ijk[a] + ((q >> a) & 1 ? -1 : 1);
-            y[a] = p[a] + eta * (c->x[a][e] - p[a]) / 2;
-        }
-        if (geometry_fluid(c->g, y) != f) return 1;
-    }
-    return 0;
-}
-
-/* Vertices on the surface: those a crossing meets, and among the
-   vertices near a crossing (cand) and the corners of cells with a vertex
-   on the surface, those whose probes differ (an edge or corner of the
-   geometry on grid lines, which no grid line crosses). */
-static void detect_surface(Ctx *c)
-{
-    int64_t nv = c->sv[2] * c->nv[2];
-    for (int64_t v = 0; v < nv; v++)
-        if (c->cand[v] && !c->onsurf[v] && probe_differs(c, v)) c->onsurf[v] = 1;
-    for (int k = 0; k < c->n[2]; k++)
-        for (int j = 0; j < c->n[1]; j++)
-            for (int i = 0; i < c->n[0]; i++) {
-                int64_t v0 = i + c->nv[0] * (j + (int64_t)c->nv[1] * k), cv[8];
-                int on = 0;
-                for (int q = 0; q < 8; q++) on |= c->onsurf[cv[q] = cell_corner(c, v0, q)] == 1;
-                for (int q = 0; q < 8 && on; q++)
-                    if (!c->onsurf[cv[q]] && !c->cand[cv[q]]) {
-                        c->cand[cv[q]] = 1;
-                        if (probe_differs(c, cv[q])) c->onsurf[cv[q]] = 2;
-                    }
-            }
-    for (int64_t v = 0; v < nv; v++) c->onsurf[v] = c->onsurf[v] != 0;
-}
-
 static void cut_lines(Ctx *c)
 {
     Line l = {0};
@@ -490,7 +403,6 @@ static void cut_lines(Ctx *c)
                 p[a] = 0;
                 int64_t v0 = iu * c->sv[u] + iw * c->sv[w];
                 line_crossings(c, &l, a, p);
-                mark_vertex_crossings(c, &l, a, iu * c->sv[u] + iw * c->sv[w]);
                 int lo = 0, any = l.ncr > 0;
                 for (int i = 0; i < c->n[a] && !any; i++)
                     any = c->cls[v0 + i * c->sv[a]] != c->cls[v0 + (i + 1) * c->sv[a]];
@@ -514,13 +426,71 @@ static double edge_len(const Ctx *c, const CutPt *p, double *xlo, double *xhi)
     return *xhi - *xlo;
 }
 
-
-/* Vertices in list turn solid (they lie on the surface): the cut points
-   of their edges die, and each edge to a fluid vertex gets its cut point
-   on the vertex, except an edge lying in the surface, whose real
-   crossing offset_cut finds. */
-static void solidify(Ctx *c, const int64_t *list, size_t nl)
+static int64_t cell_corner(const Ctx *c, int64_t v0, int q)
 {
+    return v0 + (q & 1) * c->sv[0] + ((q >> 1) & 1) * c->sv[1] + (q >> 2) * c->sv[2];
+}
+
+/* Fluid corners of cut cells that lie on the surface seen only along a
+   cell or face diagonal (a box edge or corner on grid lines: no grid
+   line through the vertex crosses the surface) turn solid too: the point
+   snap x (diagonal) towards each solid corner of the cell is tested. */
+/* Does corner q of cell (i, j, k) lie on the surface as seen towards a
+   corner of class `to`: is the point snap x the way from q to such a
+   corner of class `to` too (fluid when to is 1)? */
+static int diagonal_touch(const Ctx *c, int i, int j, int k, const int64_t cv[8], int q, int to)
+{
+    const int ijk[3] = {i + (q & 1), j + ((q >> 1) & 1), k + (q >> 2)};
+    for (int r = 0; r < 8; r++) {
+        if (c->cls[cv[r]] != to) continue;
+        const int rk[3] = {i + (r & 1), j + ((r >> 1) & 1), k + (r >> 2)};
+        double x[3];
+        for (int a = 0; a < 3; a++) x[a] = c->x[a][ijk[a]] + c->snap * (c->x[a][rk[a]] - c->x[a][ijk[a]]);
+        if (geometry_fluid(c->g, x) == to) return 1;
+    }
+    return 0;
+}
+
+static size_t snap_diagonal(Ctx *c, int64_t **list, size_t nl, size_t *lcap)
+{
+    for (int k = 0; k < c->n[2]; k++)
+        for (int j = 0; j < c->n[1]; j++)
+            for (int i = 0; i < c->n[0]; i++) {
+                int64_t v0 = i + c->nv[0] * (j + (int64_t)c->nv[1] * k), cv[8];
+                int nf = 0, ns = 0;
+                for (int q = 0; q < 8; q++) {
+                    cv[q] = cell_corner(c, v0, q);
+                    nf += c->cls[cv[q]] == 1;
+                    ns += c->cls[cv[q]] == 0;
+                }
+                if (!nf || !ns) continue;
+                for (int q = 0; q < 8; q++) {
+                    if (c->cls[cv[q]] != 1 || !diagonal_touch(c, i, j, k, cv, q, 0)) continue;
+                    c->cls[cv[q]] = 2;
+                    mem_grow((void **)list, lcap, nl + 1, sizeof **list);
+                    (*list)[nl++] = cv[q];
+                }
+            }
+    return nl;
+}
+
+static void snap(Ctx *c)
+{
+    int64_t *list = NULL;
+    size_t nl = 0, lcap = 0;
+    for (size_t i = 0; i < c->cap; i++) {
+        CutPt *p = &c->tab[i];
+        if (p->key < 0) continue;
+        double xlo, xhi, h = edge_len(c, p, &xlo, &xhi);
+        int64_t v = p->key / 3, w = v + c->sv[p->key % 3];
+        int64_t f = c->cls[v] ? v : w;
+        if (fabs(p->s - (f == v ? xlo : xhi)) < c->snap * h && c->cls[f] == 1) {
+            c->cls[f] = 2;
+            mem_grow((void **)&list, &lcap, nl + 1, sizeof *list);
+            list[nl++] = f;
+        }
+    }
+    if (c->snap > 0) nl = snap_diagonal(c, &list, nl, &lcap);
     for (size_t i = 0; i < c->cap; i++) {
         CutPt *p = &c->tab[i];
         if (p->key < 0) continue;
@@ -554,67 +524,27 @@ static void solidify(Ctx *c, const int64_t *list, size_t nl)
                 }
             }
     }
-}
-
-/* Step 3.  Every vertex on the surface is solid for the grid (each cell
-   then decides for itself, local_masks): the fluid vertices that a
-   crossing meets or whose probes differ (detect_surface), and those a
-   cut point lies within snap x (edge) of.  Cut points within that of a
-   solid vertex move onto it; one that lands on a fluid vertex (an
-   extrapolated crossing) makes that vertex solid too, and so on. */
-static void snap(Ctx *c)
-{
-    int64_t *list = NULL;
-    size_t nl = 0, lcap = 0;
+    free(list);
+    /* points on an end: on the solid end as snapping puts them, and on
+       the fluid end where an extrapolated crossing (offset_cut) settled
+       there; either way the end's own mesh point */
     for (size_t i = 0; i < c->cap; i++) {
         CutPt *p = &c->tab[i];
-        if (p->key < 0) continue;
+        if (p->key < 0 || p->dead || p->at >= 0) continue;
         double xlo, xhi, h = edge_len(c, p, &xlo, &xhi);
-        int64_t v = p->key / 3, w = v + c->sv[p->key % 3];
-        int64_t f = c->cls[v] ? v : w;
-        if (fabs(p->s - (f == v ? xlo : xhi)) < c->snap * h && c->cls[f] == 1) {
-            c->cls[f] = 2;
-            mem_grow((void **)&list, &lcap, nl + 1, sizeof *list);
-            list[nl++] = f;
+        int64_t v = p->key / 3;
+        double xs = c->cls[v] ? xhi : xlo, xf = c->cls[v] ? xlo : xhi;
+        if (fabs(p->s - xs) < c->snap * h || p->s == xf) {
+            int up = fabs(p->s - xs) < c->snap * h ? c->cls[v] != 0 : !c->cls[v];
+            p->at = (signed char)up;
+            p->s = up ? xhi : xlo;
+            c->onsurf[up ? v + c->sv[p->key % 3] : v] = 1;
+            c->st->nsnap++;
         }
     }
-    for (int64_t v = 0; v < c->sv[2] * c->nv[2] && c->snap > 0; v++)
-        if (c->onsurf[v] && c->cls[v] == 1) {
-            c->cls[v] = 2;
-            mem_grow((void **)&list, &lcap, nl + 1, sizeof *list);
-            list[nl++] = v;
-        }
-    for (int round = 0; round < 8 && (round == 0 || nl); round++) {
-        if (nl) solidify(c, list, nl);
-        nl = 0;
-        for (size_t i = 0; i < c->cap; i++) {
-            CutPt *p = &c->tab[i];
-            if (p->key < 0 || p->dead || p->at >= 0) continue;
-            double xlo, xhi, h = edge_len(c, p, &xlo, &xhi);
-            int64_t v = p->key / 3, w = v + c->sv[p->key % 3];
-            double xs = c->cls[v] ? xhi : xlo, xf = c->cls[v] ? xlo : xhi;
-            if (fabs(p->s - xs) < c->snap * h) {
-                p->at = (signed char)(c->cls[v] != 0);
-                p->s = xs;
-                c->onsurf[c->cls[v] ? w : v] = 1;
-                c->st->nsnap++;
-            } else if (p->s == xf && c->cls[c->cls[v] ? v : w] == 1) {
-                int64_t f = c->cls[v] ? v : w;
-                c->cls[f] = 2;
-                mem_grow((void **)&list, &lcap, nl + 1, sizeof *list);
-                list[nl++] = f;
-            }
-        }
-    }
-    free(list);
 }
 
 /* ---- step 4: grid faces ---- */
-
-static const double *ptx(const Ctx *c, int pt)
-{
-    return c->b.points + 3 * (size_t)pt;
-}
 
 /* A repeated point is dropped, keeping the leaf of a cut point that
    falls on a corner (a corner on the surface that is fluid for the cell). */
@@ -656,18 +586,14 @@ static void face_poly_ms(Ctx *c, int a, int64_t v0, int bits, Poly *p)
         if (p->leaf[0] < 0) p->leaf[0] = p->leaf[p->n - 1];
         p->n--;
     }
-    /* all points on one side of the face (cut points on the corners of
-       that side): no area */
-    int on_u = 1, on_w = 1;
-    for (int r = 1; r < p->n; r++) {
-        on_u &= ptx(c, p->pt[r])[u] == ptx(c, p->pt[0])[u];
-        on_w &= ptx(c, p->pt[r])[w] == ptx(c, p->pt[0])[w];
-    }
-    if (on_u || on_w) p->n = 0;
 }
 
 /* ---- step 5: boundary loops ---- */
 
+static const double *ptx(const Ctx *c, int pt)
+{
+    return c->b.points + 3 * (size_t)pt;
+}
 
 /* Adds the sides of polygon p of a cell, reversed to run against the
    cell's outward normal; out = 1 when p's normal points out of the cell.
@@ -1119,19 +1045,6 @@ static int64_t cell_base(const Ctx *c, int i, int j, int k)
     return i + c->nv[0] * (j + (int64_t)c->nv[1] * k);
 }
 
-/* Is corner q of cell (i, j, k), a vertex on the surface, fluid for
-   that cell? */
-static int local_fluid(const Ctx *c, int i, int j, int k, int q)
-{
-    const int ijk[3] = {i, j, k};
-    double eta = fmin(PROBE * c->snap, 0.25), x[3];
-    for (int a = 0; a < 3; a++) {
-        double lo = c->x[a][ijk[a]], hi = c->x[a][ijk[a] + 1], v = (q >> a) & 1 ? hi : lo;
-        x[a] = v + eta * ((lo + hi) / 2 - v);
-    }
-    return geometry_fluid(c->g, x);
-}
-
 /* Corners on the surface [our rule, doc/theory.md §6].  Snapping makes
    every vertex on the surface solid for the whole grid, which is right
    for the cells on the solid side of the surface there but not for those
@@ -1149,6 +1062,38 @@ static int local_fluid(const Ctx *c, int i, int j, int k, int q)
    on the surface but met by no grid line crossing (a box corner on a
    grid vertex) are found by testing the point snap x the way towards
    each fluid corner of their cells. */
+static void surface_corners(Ctx *c)
+{
+    for (int k = 0; k < c->n[2]; k++)
+        for (int j = 0; j < c->n[1]; j++)
+            for (int i = 0; i < c->n[0]; i++) {
+                int64_t v0 = i + c->nv[0] * (j + (int64_t)c->nv[1] * k), cv[8];
+                int nf = 0, nb = 0, ns;
+                for (int q = 0; q < 8; q++) {
+                    cv[q] = cell_corner(c, v0, q);
+                    nf += c->cls[cv[q]] == 1;
+                    nb += !c->cls[cv[q]] && c->onsurf[cv[q]];
+                }
+                ns = 8 - nf - nb;
+                if (!nf || !nb || !ns) continue;
+                for (int q = 0; q < 8; q++)
+                    if (!c->cls[cv[q]] && !c->onsurf[cv[q]] && diagonal_touch(c, i, j, k, cv, q, 1))
+                        c->onsurf[cv[q]] = 1;
+            }
+}
+
+/* Is corner q of cell (i, j, k), a vertex on the surface, fluid for
+   that cell? */
+static int local_fluid(const Ctx *c, int i, int j, int k, int q)
+{
+    const int ijk[3] = {i, j, k};
+    double eta = fmin(PROBE * c->snap, 0.25), x[3];
+    for (int a = 0; a < 3; a++) {
+        double lo = c->x[a][ijk[a]], hi = c->x[a][ijk[a] + 1], v = (q >> a) & 1 ? hi : lo;
+        x[a] = v + eta * ((lo + hi) / 2 - v);
+    }
+    return geometry_fluid(c->g, x);
+}
 
 /* Each cell's fluid corners: the fluid vertices, and the vertices on the
    surface whose probe towards the cell's centre is fluid. */
@@ -1170,6 +1115,27 @@ static void local_masks(Ctx *c)
             }
 }
 
+/* The crossing on the copy of edge (p0, along a to xhi) moved by off,
+   nearest its fluid end, when the copy's ends are fluid and solid like
+   the edge's. */
+static int shifted_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, const double off[3],
+                       double *s, int *leaf)
+{
+    double q0[3], q1[3];
+    for (int k = 0; k < 3; k++) q0[k] = p0[k] + off[k];
+    memcpy(q1, q0, sizeof q1);
+    q1[a] = xhi;
+    if (geometry_fluid(c->g, q0) != fluid_lo || geometry_fluid(c->g, q1) == fluid_lo) return 0;
+    GeoCross cr[8];
+    int k = geometry_crossings(c->g, q0, q1, cr, 8), found = 0;
+    double xf = fluid_lo ? p0[a] : xhi;
+    for (int r = 0; r < k && r < 8; r++) {
+        double x = p0[a] + cr[r].t * (xhi - p0[a]);
+        if (!found || fabs(x - xf) < fabs(*s - xf)) *s = x, *leaf = cr[r].leaf;
+        found = 1;
+    }
+    return found;
+}
 
 /* The point of the edge from corner q of cell (i, j, k) along a, whose
    ends the cell sees differently though neither is fluid for the grid (an
@@ -1180,19 +1146,31 @@ static void local_masks(Ctx *c)
 static void side_point(Ctx *c, const int ijk[3], int q, int a, int fluid_lo)
 {
     int64_t v = cell_corner(c, cell_base(c, ijk[0], ijk[1], ijk[2]), q);
-    int vi[3], l1 = -1;
+    int vi[3];
     vertex_ijk(c, v, vi);
-    double xlo = c->x[a][vi[a]], xhi = c->x[a][vi[a] + 1], h = xhi - xlo, s1;
-    CutPt *p = cut_insert(c, 3 * v + a);
-    if (!offset_cut(c, a, v, fluid_lo, &s1, &l1)) {
+    double p0[3] = {c->x[0][vi[0]], c->x[1][vi[1]], c->x[2][vi[2]]}, xhi = c->x[a][vi[a] + 1];
+    double h = xhi - p0[a], off[3] = {0, 0, 0}, sk[3], s1;
+    for (int b = 0; b < 3; b++)
+        if (b != a) off[b] = ((q >> b) & 1 ? -1 : 1) * OFFSET * c->snap * (c->x[b][ijk[b] + 1] - c->x[b][ijk[b]]);
+    int l1, l2, nk = 0;
+    CutPt *p;
+    while (nk < 3 && shifted_cut(c, a, p0, xhi, fluid_lo, off, &sk[nk], nk ? &l2 : &l1)) {
+        for (int b = 0; b < 3; b++) off[b] *= 2;
+        nk++;
+    }
+    if (nk) {
+        s1 = settle(c, extrapolate(sk, nk), p0[a], xhi);
+    } else if (!offset_cut(c, a, v, fluid_lo, &s1, &l1)) {
         c->st->ninconsistent++;
+        p = cut_insert(c, 3 * v + a);
         p->at = fluid_lo ? 1 : 0;
-        p->s = fluid_lo ? xhi : xlo;
+        p->s = fluid_lo ? xhi : p0[a];
         return;
     }
+    p = cut_insert(c, 3 * v + a);
     p->leaf = l1;
-    p->s = fmin(fmax(s1, xlo), xhi);
-    if (p->s == xlo || p->s - xlo < c->snap * h) p->at = 0, p->s = xlo;
+    p->s = fmin(fmax(s1, p0[a]), xhi);
+    if (p->s == p0[a] || p->s - p0[a] < c->snap * h) p->at = 0, p->s = p0[a];
     else if (p->s == xhi || xhi - p->s < c->snap * h) p->at = 1, p->s = xhi;
 }
 
@@ -1494,7 +1472,6 @@ static int setup(Ctx *c, const Mesh *grid, Err *e)
     int64_t nv = c->sv[2] * c->nv[2];
     c->cls = mem_alloc((size_t)nv);
     c->onsurf = mem_calloc((size_t)nv, 1);
-    c->cand = mem_calloc((size_t)nv, 1);
     c->lmask = mem_alloc((size_t)grid->ncells);
     c->vpt = mem_alloc(sizeof(int) * (size_t)nv);
     memset(c->vpt, 0xff, sizeof(int) * (size_t)nv);
@@ -1519,7 +1496,6 @@ static void ctx_free(Ctx *c)
 {
     free(c->cls);
     free(c->onsurf);
-    free(c->cand);
     free(c->lmask);
     free(c->vpt);
     free(c->cellid);
@@ -1603,8 +1579,8 @@ int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o, Mesh *out, C
     st->ncart = grid->ncells;
     classify(&c);
     cut_lines(&c);
-    if (c.snap > 0) detect_surface(&c);
     snap(&c);
+    if (c.snap > 0) surface_corners(&c);
     local_masks(&c);
     local_points(&c);
     drop_degenerate(&c);

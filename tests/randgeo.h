@@ -101,13 +101,19 @@ static int rand_shape(char *o, size_t n, int depth)
    on grid vertices, radii that make circles tangent to grid lines or run
    through grid vertices, planes through grid vertices with small integer
    normals, prisms with their vertices on grid vertices. */
+static int aligned_kinds = 0x3f; /* bit k: primitive kind k may be drawn (box, sphere, cylinder, halfSpace, cone, polygon) */
+
 static inline int rand_aligned_prim(char *o, size_t n, double g)
 {
     int m = (int)(1 / g + 0.5);
 #define RI(a, b) ((a) + (int)(rnd() * ((b) - (a) + 1)))
     int c[3] = {RI(1, m - 1), RI(1, m - 1), RI(1, m - 1)}, ax = RI(0, 2);
     double r = rnd() < 0.5 ? RI(1, m / 2) * g : sqrt((double)(RI(1, 3) * RI(1, 3) + RI(0, 2) * RI(0, 2))) * g;
-    switch (RI(0, 5)) {
+    int kind;
+    do
+        kind = RI(0, 5);
+    while (!((aligned_kinds >> kind) & 1));
+    switch (kind) {
     case 0: {
         int a[3], b[3];
         for (int q = 0; q < 3; q++) a[q] = RI(0, m - 1), b[q] = RI(a[q] + 1, m);
