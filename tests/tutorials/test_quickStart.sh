@@ -76,7 +76,7 @@ fi
 if [ -z "$missing" ]; then pass quickStart_files; else fail quickStart_files "missing:$missing"; fi
 
 # The numbers.
-/usr/bin/python3 - "$case" <<'PYEOF'
+"${KIESEL_PYTHON:-/usr/bin/python3}" - "$case" <<'PYEOF'
 import csv, json, math, os, re, sys
 
 case = sys.argv[1]
