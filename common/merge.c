@@ -146,6 +146,15 @@ typedef struct Work {
     int norder, order_cap;
 } Work;
 
+/* The skewness a merge must stay below: maxSkewness less 1e-9 of it, so
+   that a union that reaches the limit to round-off (4.000000000000007 in
+   checkMesh's arithmetic, 3.999999999999999 in ours) is not left for
+   checkMesh to call highly skewed. */
+static double skew_limit(const MergeOpts *o)
+{
+    return o->max_skewness * (1 - 1e-9);
+}
+
 static int find(Work *w, int c)
 {
     while (w->uf[c] != c) {
@@ -486,7 +495,7 @@ enum {
 static double set_eval(Work *w, const Set *s, int what, double cut)
 {
     const Mesh *m = w->m;
-    double smax = 0, C[3], mag[3] = {0, 0, 0}, V = 0, limit = w->o->max_skewness;
+    double smax = 0, C[3], mag[3] = {0, 0, 0}, V = 0, limit = skew_limit(w->o);
     if (s->n == 1) memcpy(C, root_centre(w, s->root[0]), sizeof C);
     else union_centre(w, s, C);
     for (int i = 0; i < s->n; i++) {
@@ -1480,7 +1489,7 @@ static void stats_after(Work *w, const int *root, const char *stuck, int nout, M
         if (below(w, r)) {
             st->unresolved[st->nunresolved] = C;
             st->reason[st->nunresolved++] = stuck[r] ? MERGE_NO_NEIGHBOUR : MERGE_ITER_LIMIT;
-        } else if (w->o->max_skewness > 0 && sk > w->o->max_skewness) {
+        } else if (w->o->max_skewness > 0 && sk > skew_limit(w->o)) {
             st->unresolved[st->nunresolved] = C;
             st->reason[st->nunresolved++] = MERGE_SKEWNESS;
         }
@@ -1521,8 +1530,8 @@ int merge_mesh(const Mesh *in, const MergeOpts *o, Mesh *out, MergeStats *st, Er
     SlaveKey *bad = mem_alloc(sizeof(SlaveKey) * (size_t)nc);
     bad_clusters(&w, 0, bad, &st->skew_max_cut);
     st->niter = merge_rounds(&w, stuck);
-    int nbad = bad_clusters(&w, o->max_skewness, bad, &st->skew_max_before);
-    st->nskew_merged = skew_rounds(&w, o->max_skewness, o->max_iter, bad, nbad);
+    int nbad = bad_clusters(&w, skew_limit(o), bad, &st->skew_max_before);
+    st->nskew_merged = skew_rounds(&w, skew_limit(o), o->max_iter, bad, nbad);
     free(bad);
     if (o->max_skewness > 0) {
         st->nundone = repair(&w);
