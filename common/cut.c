@@ -270,26 +270,44 @@ static void line_crossings(Ctx *c, Line *l, int a, const double p[3])
     }
 }
 
-/* The crossing nearest the fluid end on the copy of edge (p0, along a to
-   xhi) moved by off along axis b, when the copy's ends are fluid and
-   solid like the edge's. */
-static int moved_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, int b, double off,
-                     double *s, int *leaf)
+/* The crossing on the copy of edge (p0, along a to xhi) moved by off,
+   nearest its fluid end, when the copy's ends are fluid and solid like
+   the edge's. */
+static int shifted_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, const double off[3],
+                       double *s, int *leaf)
 {
-    double q0[3] = {p0[0], p0[1], p0[2]}, q1[3];
-    q0[b] += off;
+    double q0[3], q1[3];
+    for (int k = 0; k < 3; k++) q0[k] = p0[k] + off[k];
     memcpy(q1, q0, sizeof q1);
     q1[a] = xhi;
-    if (geometry_fluid(c->g, q0) != fluid_lo || geometry_fluid(c->g, q1) == fluid_lo) return 0;
+    /* the ends are judged snap x (edge) in, well inside the offsets:
+       an end may lie on another surface (a cone's base on a grid plane),
+       and a crossing there is not the edge's */
+    double t0[3], t1[3], eta = c->snap * (xhi - p0[a]);
+    memcpy(t0, q0, sizeof t0);
+    memcpy(t1, q1, sizeof t1);
+    t0[a] += eta;
+    t1[a] -= eta;
+    if (geometry_fluid(c->g, t0) != fluid_lo || geometry_fluid(c->g, t1) == fluid_lo) return 0;
     GeoCross cr[8];
     int k = geometry_crossings(c->g, q0, q1, cr, 8), found = 0;
     double xf = fluid_lo ? p0[a] : xhi;
     for (int r = 0; r < k && r < 8; r++) {
         double x = p0[a] + cr[r].t * (xhi - p0[a]);
+        if (x < t0[a] || x > t1[a]) continue;
         if (!found || fabs(x - xf) < fabs(*s - xf)) *s = x, *leaf = cr[r].leaf;
         found = 1;
     }
     return found;
+}
+
+/* The same for the copy moved by off along axis b. */
+static int moved_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, int b, double off,
+                     double *s, int *leaf)
+{
+    double o[3] = {0, 0, 0};
+    o[b] = off;
+    return shifted_cut(c, a, p0, xhi, fluid_lo, o, s, leaf);
 }
 
 /* The crossing on an unmoved edge from crossings s[0..2] on copies
@@ -1115,27 +1133,6 @@ static void local_masks(Ctx *c)
             }
 }
 
-/* The crossing on the copy of edge (p0, along a to xhi) moved by off,
-   nearest its fluid end, when the copy's ends are fluid and solid like
-   the edge's. */
-static int shifted_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, const double off[3],
-                       double *s, int *leaf)
-{
-    double q0[3], q1[3];
-    for (int k = 0; k < 3; k++) q0[k] = p0[k] + off[k];
-    memcpy(q1, q0, sizeof q1);
-    q1[a] = xhi;
-    if (geometry_fluid(c->g, q0) != fluid_lo || geometry_fluid(c->g, q1) == fluid_lo) return 0;
-    GeoCross cr[8];
-    int k = geometry_crossings(c->g, q0, q1, cr, 8), found = 0;
-    double xf = fluid_lo ? p0[a] : xhi;
-    for (int r = 0; r < k && r < 8; r++) {
-        double x = p0[a] + cr[r].t * (xhi - p0[a]);
-        if (!found || fabs(x - xf) < fabs(*s - xf)) *s = x, *leaf = cr[r].leaf;
-        found = 1;
-    }
-    return found;
-}
 
 /* The point of the edge from corner q of cell (i, j, k) along a, whose
    ends the cell sees differently though neither is fluid for the grid (an
