@@ -301,14 +301,6 @@ static int shifted_cut(const Ctx *c, int a, const double p0[3], double xhi, int 
     return found;
 }
 
-/* The same for the copy moved by off along axis b. */
-static int moved_cut(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, int b, double off,
-                     double *s, int *leaf)
-{
-    double o[3] = {0, 0, 0};
-    o[b] = off;
-    return shifted_cut(c, a, p0, xhi, fluid_lo, o, s, leaf);
-}
 
 /* The crossing on an unmoved edge from crossings s[0..2] on copies
    moved by 1, 2 and 4 times a small offset (n of them found): quadratic
@@ -348,17 +340,32 @@ static double settle(const Ctx *c, double s, double xlo, double xhi)
    Returns 0 when no copy crosses. */
 static int offset_cut(const Ctx *c, int a, int64_t v, int fluid_lo, double *s, int *leaf)
 {
-    int ijk[3], found = 0;
+    int ijk[3], found = 0, u = (a + 1) % 3, w = (a + 2) % 3;
     vertex_ijk(c, v, ijk);
     double p0[3] = {c->x[0][ijk[0]], c->x[1][ijk[1]], c->x[2][ijk[2]]};
-    double xhi = c->x[a][ijk[a] + 1], xf = fluid_lo ? p0[a] : xhi;
-    for (int d = 0; d < 4; d++) {
-        int b = (a + 1 + d / 2) % 3, l1, l2;
+    double xhi = c->x[a][ijk[a] + 1], xf = fluid_lo ? p0[a] : xhi, h[3] = {0, 0, 0};
+    for (int b = 0; b < 3; b++) {
         int lo = ijk[b] < c->n[b] ? ijk[b] : ijk[b] - 1;
-        double h = c->x[b][lo + 1] - c->x[b][lo];
-        double off = (d & 1 ? -1 : 1) * OFFSET * c->snap * h, sk[3];
-        int nk = 0;
-        while (nk < 3 && moved_cut(c, a, p0, xhi, fluid_lo, b, (1 << nk) * off, &sk[nk], nk ? &l2 : &l1)) nk++;
+        h[b] = c->x[b][lo + 1] - c->x[b][lo];
+    }
+    /* four copies along the axes across the edge, then four along the
+       diagonals (off both faces of a geometry edge lying on the grid
+       line, where the axis copies stay in one face or the other) */
+    for (int d = 0; d < 8; d++) {
+        double off[3] = {0, 0, 0}, sk[3];
+        if (d < 4) {
+            int b = d < 2 ? u : w;
+            off[b] = (d & 1 ? -1 : 1) * OFFSET * c->snap * h[b];
+        } else {
+            off[u] = (d & 1 ? -1 : 1) * OFFSET * c->snap * h[u];
+            off[w] = (d & 2 ? -1 : 1) * OFFSET * c->snap * h[w];
+        }
+        if (d == 4 && found) break;
+        int nk = 0, l1 = -1, l2;
+        while (nk < 3 && shifted_cut(c, a, p0, xhi, fluid_lo, off, &sk[nk], nk ? &l2 : &l1)) {
+            for (int b = 0; b < 3; b++) off[b] *= 2;
+            nk++;
+        }
         if (!nk) continue;
         double s1 = settle(c, extrapolate(sk, nk), p0[a], xhi);
         if (!found || fabs(s1 - xf) < fabs(*s - xf)) *s = s1, *leaf = l1;
