@@ -412,6 +412,24 @@ static void edge_cut(Ctx *c, const Line *l, int a, int i, int64_t va, int *lo)
     p->leaf = l->cr[best].leaf;
 }
 
+/* Vertices of the line from v0 along a that a crossing meets (within
+   the settle distance) lie on the surface, whatever their class: the
+   corners of a layer of the geometry exactly one cell thick are crossed
+   at both ends of their edges and nowhere in between, so no edge of
+   theirs changes class and snapping alone would not find them. */
+static void mark_vertex_crossings(Ctx *c, const Line *l, int a, int64_t v0)
+{
+    const double *x = c->x[a];
+    int i = 0;
+    for (int r = 0; r < l->ncr; r++) {
+        while (i < c->n[a] && x[i + 1] <= l->s[r]) i++;
+        for (int e = i; e <= i + 1 && e <= c->n[a]; e++) {
+            int lo = e < c->n[a] ? e : e - 1;
+            if (fabs(l->s[r] - x[e]) < EXTRA_SNAP * c->snap * (x[lo + 1] - x[lo])) c->onsurf[v0 + e * c->sv[a]] = 1;
+        }
+    }
+}
+
 static void cut_lines(Ctx *c)
 {
     Line l = {0};
@@ -428,6 +446,7 @@ static void cut_lines(Ctx *c)
                 p[a] = 0;
                 int64_t v0 = iu * c->sv[u] + iw * c->sv[w];
                 line_crossings(c, &l, a, p);
+                mark_vertex_crossings(c, &l, a, iu * c->sv[u] + iw * c->sv[w]);
                 int lo = 0, any = l.ncr > 0;
                 for (int i = 0; i < c->n[a] && !any; i++)
                     any = c->cls[v0 + i * c->sv[a]] != c->cls[v0 + (i + 1) * c->sv[a]];
@@ -515,6 +534,13 @@ static void snap(Ctx *c)
             list[nl++] = f;
         }
     }
+    /* fluid vertices that a crossing meets (mark_vertex_crossings) */
+    for (int64_t v = 0; v < c->sv[2] * c->nv[2] && c->snap > 0; v++)
+        if (c->onsurf[v] && c->cls[v] == 1) {
+            c->cls[v] = 2;
+            mem_grow((void **)&list, &lcap, nl + 1, sizeof *list);
+            list[nl++] = v;
+        }
     if (c->snap > 0) nl = snap_diagonal(c, &list, nl, &lcap);
     for (size_t i = 0; i < c->cap; i++) {
         CutPt *p = &c->tab[i];
