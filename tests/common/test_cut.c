@@ -687,13 +687,71 @@ static int regular_cell(const Geometry *g, const Mesh *grid, int ci)
     return 1;
 }
 
+/* One random geometry cut with the flow inside (side 0) and outside
+   (side 1) on grid: each side's geometry, grid and statistics; ok when
+   the grid is sound, empty when nothing was left (acceptable). */
+typedef struct TwoSides {
+    FixtureGeo G[2];
+    Mesh m[2];
+    CutStats st[2];
+    int ok[2], made[2], empty[2];
+} TwoSides;
+
+/* Cuts both sides of shape (case it) and returns the failures, printed. */
+static int two_sides(TwoSides *s, const Mesh *grid, const char *shape, int twod, int nn, int it)
+{
+    char txt[8192], why[2100];
+    int nfail = 0;
+    memset(s->ok, 0, sizeof s->ok);
+    memset(s->made, 0, sizeof s->made);
+    memset(s->empty, 0, sizeof s->empty);
+    mesh_init(&s->m[0]);
+    mesh_init(&s->m[1]);
+    for (int side = 0; side < 2; side++) {
+        snprintf(txt, sizeof txt, "s { flow %s; %s }", side ? "outside" : "inside", shape);
+        if (fixture_geo(&s->G[side], txt)) {
+            printf("bad random geometry: %s\n", txt);
+            return nfail + 1;
+        }
+        s->made[side] = 1;
+        if (twod) geometry_flatten(&s->G[side].g, 2, 0.5 / nn);
+        CutOpts o;
+        cut_opts_default(&o);
+        Err e;
+        if (cut_mesh(grid, &s->G[side].g, &o, &s->m[side], &s->st[side], &e)) {
+            /* the only acceptable failure: nothing left */
+            if (!strstr(e.msg, "no cell is left")) {
+                printf("case %d side %d: %s\n  %s\n", it, side, e.msg, txt);
+                nfail++;
+            } else
+                s->empty[side] = 1;
+            continue;
+        }
+        if (check_grid(&s->m[side], why, sizeof why)) {
+            printf("case %d side %d: %s\n  %s\n", it, side, why, txt);
+            nfail++;
+            continue;
+        }
+        s->ok[side] = 1;
+    }
+    return nfail;
+}
+
+static void two_sides_free(TwoSides *s)
+{
+    for (int side = 0; side < 2; side++) {
+        mesh_free(&s->m[side]);
+        if (s->made[side]) fixture_geo_free(&s->G[side]);
+    }
+}
+
 TEST(cut_random)
 {
     /* CUT_RANDOM_CASES=n runs a longer study */
     const char *env = getenv("CUT_RANDOM_CASES");
     int ncase = env ? atoi(env) : 500, nfail = 0, nreg = 0, nirr = 0, ncells = 0;
     double worst = 0;
-    char txt[8192], shape[7000], why[2100];
+    char shape[7000];
     int it;
     for (it = 0; it < ncase && nfail < 3; it++) {
         /* every fourth case in 2-D: one cell thick, empty front and back */
@@ -702,49 +760,19 @@ TEST(cut_random)
         Mesh grid;
         grid_box(&grid, n3, lo, hi, twod);
         rand_shape(shape, sizeof shape, 2);
-        FixtureGeo G[2];
-        Mesh m[2];
-        CutStats st[2];
-        int ok[2] = {0, 0}, made[2] = {0, 0};
-        mesh_init(&m[0]);
-        mesh_init(&m[1]);
-        for (int side = 0; side < 2; side++) {
-            snprintf(txt, sizeof txt, "s { flow %s; %s }", side ? "outside" : "inside", shape);
-            if (fixture_geo(&G[side], txt)) {
-                printf("bad random geometry: %s\n", txt);
-                nfail++;
-                break;
-            }
-            made[side] = 1;
-            if (twod) geometry_flatten(&G[side].g, 2, 0.5 / nn);
-            CutOpts o;
-            cut_opts_default(&o);
-            Err e;
-            if (cut_mesh(&grid, &G[side].g, &o, &m[side], &st[side], &e)) {
-                /* the only acceptable failure: nothing left */
-                if (!strstr(e.msg, "no cell is left")) {
-                    printf("case %d side %d: %s\n  %s\n", it, side, e.msg, txt);
-                    nfail++;
-                }
-                continue;
-            }
-            if (check_grid(&m[side], why, sizeof why)) {
-                printf("case %d side %d: %s\n  %s\n", it, side, why, txt);
-                nfail++;
-                continue;
-            }
-            ok[side] = 1;
-            ncells += m[side].ncells;
-        }
-        if (nfail == 0 && made[0]) {
+        TwoSides S;
+        nfail += two_sides(&S, &grid, shape, twod, nn, it);
+        for (int side = 0; side < 2; side++)
+            if (S.ok[side]) ncells += S.m[side].ncells;
+        if (nfail == 0 && S.made[0]) {
             int nc = grid.ncells;
             double *pv = MEM_NEW(double, nc);
             char *odd = MEM_NEW(char, nc);
             for (int side = 0; side < 2; side++)
-                if (ok[side]) add_parent_vol(&m[side], pv, odd);
+                if (S.ok[side]) add_parent_vol(&S.m[side], pv, odd);
             double h3 = hi[2] / ((double)nn * nn * n3[2]);
             for (int c = 0; c < nc; c++) {
-                if (odd[c] || !regular_cell(&G[0].g, &grid, c)) {
+                if (odd[c] || !regular_cell(&S.G[0].g, &grid, c)) {
                     nirr++;
                     continue;
                 }
@@ -758,10 +786,7 @@ TEST(cut_random)
             free(pv);
             free(odd);
         }
-        for (int side = 0; side < 2; side++) {
-            mesh_free(&m[side]);
-            if (made[side]) fixture_geo_free(&G[side]);
-        }
+        two_sides_free(&S);
         mesh_free(&grid);
     }
     printf("  %d random cases run of %d (a quarter 2-D; the study stops at 3 failures), %d cells; volume identity "
@@ -891,55 +916,25 @@ TEST(cut_random_aligned)
     aligned_kinds = envk ? (int)strtol(envk, NULL, 0) : 0x0f;
     int ncase = env ? atoi(env) : 300, nfail = 0, nreg = 0, nirr = 0, nclean = 0, it, maxfail = envf ? atoi(envf) : 3;
     double worst = 0, worst_total = 0;
-    char txt[8192], shape[7000], why[2100];
+    char shape[7000];
     for (it = 0; it < ncase && nfail < maxfail; it++) {
         int nn = 6 + it % 7, twod = it % 4 == 3, n3[3] = {nn, nn, twod ? 1 : nn};
         double lo[3] = {0, 0, 0}, hi[3] = {1, 1, twod ? 1.0 / nn : 1};
-        Mesh grid, m[2];
+        Mesh grid;
         grid_box(&grid, n3, lo, hi, twod);
         rand_aligned_shape(shape, sizeof shape, getenv("CUT_ALIGNED_DEPTH") ? atoi(getenv("CUT_ALIGNED_DEPTH")) : 0,
                            1.0 / nn);
-        FixtureGeo G[2];
-        CutStats st[2];
-        int ok[2] = {0, 0}, made[2] = {0, 0}, empty[2] = {0, 0};
-        mesh_init(&m[0]);
-        mesh_init(&m[1]);
-        for (int side = 0; side < 2; side++) {
-            snprintf(txt, sizeof txt, "s { flow %s; %s }", side ? "outside" : "inside", shape);
-            if (fixture_geo(&G[side], txt)) {
-                printf("bad random geometry: %s\n", txt);
-                nfail++;
-                break;
-            }
-            made[side] = 1;
-            if (twod) geometry_flatten(&G[side].g, 2, 0.5 / nn);
-            CutOpts o;
-            cut_opts_default(&o);
-            Err e;
-            if (cut_mesh(&grid, &G[side].g, &o, &m[side], &st[side], &e)) {
-                if (!strstr(e.msg, "no cell is left")) {
-                    printf("case %d side %d: %s\n  %s\n", it, side, e.msg, txt);
-                    nfail++;
-                } else
-                    empty[side] = 1;
-                continue;
-            }
-            if (check_grid(&m[side], why, sizeof why)) {
-                printf("case %d side %d: %s\n  %s\n", it, side, why, txt);
-                nfail++;
-                continue;
-            }
-            ok[side] = 1;
-        }
-        if (made[0] && made[1] && (ok[0] || empty[0]) && (ok[1] || empty[1])) {
+        TwoSides S;
+        nfail += two_sides(&S, &grid, shape, twod, nn, it);
+        if (S.made[0] && S.made[1] && (S.ok[0] || S.empty[0]) && (S.ok[1] || S.empty[1])) {
             int nc = grid.ncells, irr = 0;
             double *pv = MEM_NEW(double, nc), h3 = hi[2] / ((double)nn * nn * n3[2]), total = 0;
             char *odd = MEM_NEW(char, nc);
             for (int side = 0; side < 2; side++)
-                if (ok[side]) add_parent_vol(&m[side], pv, odd);
+                if (S.ok[side]) add_parent_vol(&S.m[side], pv, odd);
             for (int c = 0; c < nc; c++) {
                 total += pv[c];
-                if (odd[c] || aligned_irregular(&G[0].g, &grid, c)) {
+                if (odd[c] || aligned_irregular(&S.G[0].g, &grid, c)) {
                     nirr++, irr++;
                     continue;
                 }
@@ -956,10 +951,7 @@ TEST(cut_random_aligned)
             free(pv);
             free(odd);
         }
-        for (int side = 0; side < 2; side++) {
-            mesh_free(&m[side]);
-            if (made[side]) fixture_geo_free(&G[side]);
-        }
+        two_sides_free(&S);
         mesh_free(&grid);
     }
     printf("  %d grid-aligned cases of %d (kinds 0x%x, stops at %d failures): %d regular cells add up (worst %.2e), %d "
