@@ -904,16 +904,17 @@ static int aligned_irregular(const Geometry *g, const Mesh *grid, int ci)
    lines and grid vertices on purpose (rand_aligned_shape): every
    Cartesian cell that is not irregular by design gets its whole volume
    from the two flow sides, and the grids are sound.  make test draws
-   single boxes, spheres, cylinders and half-spaces (faces on grid planes,
-   circles tangent to grid lines, spheres and planes through grid
-   vertices); make validate (tests/validation/cutAligned) adds cones,
-   prisms with their vertices on grid vertices and CSG trees of depth 2,
-   where the identity does not hold yet (doc/validation.md). */
+   single boxes, spheres, cylinders, half-spaces and cones (faces on grid
+   planes, circles tangent to grid lines, spheres and planes through grid
+   vertices, apices on grid vertices); make validate
+   (tests/validation/cutAligned) adds prisms with their vertices on grid
+   vertices and CSG trees of depth 2, where the identity does not hold
+   everywhere yet (doc/validation.md). */
 TEST(cut_random_aligned)
 {
     const char *env = getenv("CUT_ALIGNED_CASES");
     const char *envf = getenv("CUT_ALIGNED_MAXFAIL"), *envk = getenv("CUT_ALIGNED_KINDS");
-    aligned_kinds = envk ? (int)strtol(envk, NULL, 0) : 0x0f;
+    aligned_kinds = envk ? (int)strtol(envk, NULL, 0) : 0x1f;
     int ncase = env ? atoi(env) : 300, nfail = 0, nreg = 0, nirr = 0, nclean = 0, it, maxfail = envf ? atoi(envf) : 3;
     double worst = 0, worst_total = 0;
     char shape[7000];
