@@ -628,7 +628,8 @@ static void face_poly_ms(Ctx *c, int a, int64_t v0, int bits, Poly *p)
     for (int q = 0; q < 4; q++) {
         int fq = (bits >> q) & 1, fn = (bits >> ((q + 1) & 3)) & 1;
         if (fq) poly_add(p, vertex_point(c, cv[q]), -1);
-        if (fq || fn) {
+        /* an edge between two fluid vertices of the grid has no point */
+        if ((fq || fn) && !(c->cls[cv[q]] == 1 && c->cls[cv[(q + 1) & 3]] == 1)) {
             CutPt *e = cut_find(c, 3 * elo[q] + eax[q]);
             if (e) poly_add(p, cut_point(c, e), e->leaf);
         }
@@ -1415,7 +1416,10 @@ static void cell_faces(Ctx *c, int i, int j, int k)
     double vol = 1;
     for (int a = 0; a < 3; a++) {
         grid_face(c, ijk, ci, v0, a, 1, cell, &pu[a]);
-        grid_face(c, ijk, ci, v0, a, 0, cell, &pl[a]);
+        /* a whole cell's lower faces matter only where its lower
+           neighbour sees less of them (the rest is that cell's to add) */
+        if (mask != 255 || (ijk[a] > 0 && face_bits(c->lmask[ci - c->sc[a]], a, 1) != 15))
+            grid_face(c, ijk, ci, v0, a, 0, cell, &pl[a]);
         c->vref[a] = (c->x[a][ijk[a]] + c->x[a][ijk[a] + 1]) / 2;
         vol *= c->x[a][ijk[a] + 1] - c->x[a][ijk[a]];
     }
