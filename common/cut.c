@@ -27,10 +27,12 @@
 ** in the surface (a grid line in a box face on a grid plane), whose real
 ** crossing is found on copies of the edge moved across it (offset_cut).
 ** Afterwards each fluid corner keeps a corner piece at least snap x (edge)
-** wide, so no face or cell has zero size.  Surfaces on grid planes are so
-** cut exactly where the fluid side is concave (flow round a box); where it
-** is convex (flow inside a grid-aligned box) the cells along the edges are
-** kept whole instead of chamfered (step 6, "Whole cells").
+** wide, so no face or cell has zero size.  Vertices a crossing meets are
+** on the surface too (mark_vertex_crossings).  Being solid for the grid,
+** a vertex on the surface is then judged by each of its cells on its own
+** (step 6, local_masks: a probe towards the cell's centre), so the cells
+** on the fluid side of a face on a grid plane keep their whole volume
+** (a cylinder's cap, flow inside a grid-aligned box).
 **
 ** Faces.  A grid face polygon is walked round its corners in the order
 ** base, +u, +u+v, +v (normal +a, with u = a+1, v = a+2 cyclically),

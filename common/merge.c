@@ -657,6 +657,27 @@ static void collect_set(Work *w, const Set *s)
     }
 }
 
+/* The union of cluster r, one of its neighbours first[0..n1) and a
+   neighbour of those two whose set_eval (mode what) is lowest, into *bs
+   and *best; neighbours are tried while *best is not below stop, each
+   evaluation bounded by *best when bounded (choose_skew, choose_clean). */
+static void best_triple(Work *w, int r, const int *first, int n1, int what, double stop, int bounded, Set *bs,
+                        double *best)
+{
+    Set s;
+    for (int i = 0; i < n1 && !(*best < stop); i++) {
+        int three[3] = {r, first[i], -1};
+        set_make(&s, 2, three);
+        collect_set(w, &s);
+        for (int k = 0; k < w->ncand; k++) {
+            three[2] = w->cand[k].root;
+            set_make(&s, 3, three);
+            double sk = set_eval(w, &s, what, bounded ? *best : HUGE_VAL);
+            if (sk >= 0 && sk < *best) *best = sk, *bs = s;
+        }
+    }
+}
+
 /* The union of cluster r with a neighbour whose maximum face skewness is
    lowest among the sound ones (*best; HUGE_VAL when none), or, when no
    such pair gets below cur (r's own maximum), the union with two; ties go
@@ -676,17 +697,7 @@ static int choose_skew(Work *w, int r, double cur, Set *bs, double *best)
         double sk = set_eval(w, &s, EV_SOUND, *best);
         if (sk >= 0 && sk < *best) *best = sk, *bs = s;
     }
-    for (int i = 0; i < n1 && !(*best < cur); i++) {
-        int three[3] = {r, first[i], -1};
-        set_make(&s, 2, three);
-        collect_set(w, &s);
-        for (int k = 0; k < w->ncand; k++) {
-            three[2] = w->cand[k].root;
-            set_make(&s, 3, three);
-            double sk = set_eval(w, &s, EV_SOUND, *best);
-            if (sk >= 0 && sk < *best) *best = sk, *bs = s;
-        }
-    }
+    best_triple(w, r, first, n1, EV_SOUND, cur, 1, bs, best);
     free(first);
     return *best < HUGE_VAL;
 }
@@ -1059,17 +1070,7 @@ static int choose_clean(Work *w, int r, Set *bs)
         set_make(&s, 2, (int[2]){r, first[i]});
         if (set_eval(w, &s, EV_CLEAN, HUGE_VAL) >= 0) *bs = s, best = 0;
     }
-    for (int i = 0; i < n1 && best == HUGE_VAL; i++) {
-        int three[3] = {r, first[i], -1};
-        set_make(&s, 2, three);
-        collect_set(w, &s);
-        for (int k = 0; k < w->ncand; k++) {
-            three[2] = w->cand[k].root;
-            set_make(&s, 3, three);
-            double sk = set_eval(w, &s, EV_CLEAN, HUGE_VAL);
-            if (sk >= 0 && sk < best) *bs = s, best = sk;
-        }
-    }
+    best_triple(w, r, first, n1, EV_CLEAN, HUGE_VAL, 0, bs, &best);
     free(first);
     return best < HUGE_VAL;
 }

@@ -88,6 +88,7 @@ static void report(FILE *f, const CutStats *s, const Geometry *g, const Mesh *m)
     if (s->nodd) fprintf(f, "  edges crossed 3+ times (nearest crossing to the fluid kept): %d\n", s->nodd);
     if (s->ninconsistent) fprintf(f, "  edges with no crossing between differing vertices: %d\n", s->ninconsistent);
     if (s->ntunnel) fprintf(f, "  cells joined through a body diagonal (tunnel): %d\n", s->ntunnel);
+    if (s->ndegenerate) fprintf(f, "  cells with fluid corners but no volume (dropped): %d\n", s->ndegenerate);
     fprintf(f, "\n");
 }
 
