@@ -78,23 +78,6 @@ struct Cad {
 static int cad_nopen;          /* live Cad objects */
 static unsigned cad_serial;    /* model names already handed out */
 
-/* gmsh's mesher and OpenCASCADE keep allocations past gmshFinalize.
-   Programs that link this file and run under LeakSanitizer (make
-   SANITIZE=1) would fail on those; this hook, read by the sanitizer
-   runtime at exit, names them.  The patterns match only frames inside
-   OpenCASCADE (libTK*), gmsh's surface mesher and its .geo parser, so a
-   gmsh array this file forgets to gmshFree is still reported.  The
-   second hook keeps the sanitizer from listing the suppressions used on
-   stderr, which tool tests read. */
-const char *__lsan_default_suppressions(void);
-const char *__lsan_default_suppressions(void)
-{
-    return "leak:libTK\nleak:meshGFace\nleak:strsave\n";
-}
-
-const char *__lsan_default_options(void);
-const char *__lsan_default_options(void) { return "print_suppressions=0"; }
-
 /* Copies gmsh's text into dst with control and non-ASCII bytes (a
    binary file's name field in an STL message) replaced by '?'. */
 static void clean(char *dst, size_t n, const char *src)

@@ -36,18 +36,17 @@
 #define NPATCH 7
 #define PI 3.14159265358979323846
 
-static const Patch patches3[NPATCH] = {
-    {"xMin", "patch", 0, 0, NULL, NULL}, {"xMax", "patch", 0, 0, NULL, NULL},
-    {"yMin", "patch", 0, 0, NULL, NULL}, {"yMax", "patch", 0, 0, NULL, NULL},
-    {"zMin", "patch", 0, 0, NULL, NULL}, {"zMax", "patch", 0, 0, NULL, NULL},
-    {"wall", "wall", 0, 0, NULL, NULL},
-};
+/* Patch holds writable strings (the readers own theirs), so the names
+   live in arrays rather than in string literals. */
+static char patch_names[NPATCH][8] = {"xMin", "xMax", "yMin", "yMax", "zMin", "zMax", "wall"};
+static char type_patch[] = "patch", type_wall[] = "wall", type_empty[] = "empty";
 
 /* Patches with the two sides normal to flat (if >= 0) empty. */
 static void side_patches(Patch p[NPATCH], int flat)
 {
-    for (int k = 0; k < NPATCH; k++) p[k] = patches3[k];
-    if (flat >= 0) p[2 * flat].type = p[2 * flat + 1].type = "empty";
+    for (int k = 0; k < NPATCH; k++)
+        p[k] = (Patch){patch_names[k], k < 6 ? type_patch : type_wall, 0, 0, NULL, NULL};
+    if (flat >= 0) p[2 * flat].type = p[2 * flat + 1].type = type_empty;
 }
 
 static VoronoiInput input(int n, const double *x, const char *keep, const int *patch, const double lo[3],
@@ -186,13 +185,13 @@ static int check_grid(Mesh *m, const VoronoiInput *in, const int *seed_of, doubl
                      geom_norm(cr) / (dn * Sn));
             return -1;
         }
-        for (int q = m->face_off[f]; q < m->face_off[f + 1]; q++) {
-            const double *P = m->points + 3 * m->face_idx[q];
+        for (int fp = m->face_off[f]; fp < m->face_off[f + 1]; fp++) {
+            const double *P = m->points + 3 * m->face_idx[fp];
             double pm[3] = {P[0] - mid[0], P[1] - mid[1], P[2] - mid[2]};
             double off = geom_dot(d, pm) / dn;
             if (fabs(off) > ptol * L) {
                 snprintf(why, nwhy, "face %d (seeds %d %d): point %d is %g off the bisector", f, a, b,
-                         m->face_idx[q], off);
+                         m->face_idx[fp], off);
                 return -1;
             }
         }
