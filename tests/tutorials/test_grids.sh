@@ -25,13 +25,10 @@
 #     merged grid and counts the same cells (else SKIP).
 # Then Allclean must restore the case as it came.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../..}/tests/lib.sh"
 top=${KIESEL_TOP:-$(cd "$(dirname "$0")/../.." && pwd)}
 export KIESEL_DIR=$top
 scratch=$PWD
-
-pass() { echo "PASS $1${2:+: $2}"; }
-fail() { echo "FAIL $1: $2"; }
-listing() { (cd "$1" && find . | LC_ALL=C sort); }
 
 if [ -z "${WM_PROJECT_DIR:-}" ] && [ -d /usr/share/openfoam ]; then
     export WM_PROJECT_DIR=/usr/share/openfoam
@@ -42,25 +39,11 @@ command -v checkMesh > /dev/null 2>&1 && have_openfoam=1
 # run_case NAME EXACT_FLUID_VOLUME RELATIVE_TOLERANCE
 run_case() {
     local name=$1 exact=$2 tol=$3
-    local src=$top/tutorials/grids/$name case=$scratch/$name t0 t1 out rc
-    rm -rf "$case"
-    cp -r "$src" "$case"
-    # Only the pristine case: outputs of a run inside the repository are not copied.
-    (cd "$case" && ./Allclean > /dev/null 2>&1)
+    local src=$top/tutorials/grids/$name case=$scratch/$name
+    fresh_copy "$src" "$case"
     local pristine
     pristine=$(listing "$case")
-
-    t0=$(date +%s.%N)
-    out=$(cd / && timeout 120 "$case/Allrun" 2>&1); rc=$?
-    t1=$(date +%s.%N)
-    # A failed step fails this check; the checks below still run on what the
-    # steps before it left, so that one failure does not hide the others.
-    if [ "$rc" -ne 0 ]; then
-        fail "grids_${name}_allrun" "Allrun exited with status $rc; output:"
-        printf '%s\n' "$out" | tail -n 8 | sed 's/^/  /'
-    else
-        pass "grids_${name}_allrun" "$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f s", b - a }')"
-    fi
+    timed_allrun "grids_${name}_allrun" "$case"
 
     # Every log exists and ends with End; checkGrid's say Grid OK.
     local bad="" app log last

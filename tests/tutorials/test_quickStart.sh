@@ -22,19 +22,13 @@
 # foamToVTK must read both fields (else SKIP).  Then a second Allrun must
 # change nothing, and Allclean must restore the case as it came.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../..}/tests/lib.sh"
 top=${KIESEL_TOP:-$(cd "$(dirname "$0")/../.." && pwd)}
 export KIESEL_DIR=$top
 src=$top/tutorials/basic/quickStart
 case=$PWD/quickStart
 
-pass() { echo "PASS $1"; }
-fail() { echo "FAIL $1: $2"; }
-listing() { (cd "$1" && find . | LC_ALL=C sort); }
-
-rm -rf "$case"
-cp -r "$src" "$case"
-# Only the pristine case: outputs of a run inside the repository are not copied.
-(cd "$case" && ./Allclean > /dev/null 2>&1)
+fresh_copy "$src" "$case"
 pristine=$(listing "$case")
 
 # Run from another directory, as `make tutorial` does.

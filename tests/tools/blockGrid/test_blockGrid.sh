@@ -4,34 +4,13 @@
 # bad dictionary (file:line, non-zero exit, old grid untouched), binary and
 # gzip output, and OpenFOAM's checkMesh when it is installed.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
 
-pass() { echo "PASS $1"; }
-fail() { echo "FAIL $1: $2"; }
-check() { # name, condition-command...
-    local n=$1; shift
-    if "$@"; then pass "$n"; else fail "$n" "$*"; fi
-}
-
-controlDict() { # case [format]
-    mkdir -p "$1/system"
-    cat >"$1/system/controlDict" <<EOF
-FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }
-application blockGrid;
-startFrom startTime; startTime 0; stopAt endTime; endTime 1; deltaT 1;
-writeControl timeStep; writeInterval 1; writeFormat ${2:-ascii}; writeCompression off;
-EOF
-    # the least checkMesh needs besides controlDict
-    printf 'FoamFile { version 2.0; format ascii; class dictionary; object fvSchemes; }\n%s\n' \
-        'ddtSchemes {} gradSchemes {} divSchemes {} laplacianSchemes {} interpolationSchemes {} snGradSchemes {}' \
-        >"$1/system/fvSchemes"
-    printf 'FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }\n' >"$1/system/fvSolution"
-}
-
 # ---- 2-D case (the design example) ----
 mkdir -p c2d/system
-controlDict c2d
+case_system c2d blockGrid
 cat >c2d/system/blockGridDict <<'EOF'
 FoamFile { version 2.0; format ascii; class dictionary; object blockGridDict; }
 scale 1;
@@ -99,7 +78,7 @@ check checkGrid_2d_numbers test $? -eq 0
 
 # ---- 3-D graded case, binary from controlDict, -o DIR, -gzip ----
 mkdir -p c3d/system
-controlDict c3d binary
+case_system c3d blockGrid binary
 cat >c3d/system/blockGridDict <<'EOF'
 x { start -1; segments ( (1 4 2) ); }
 y { segments ( (0.5 3 1) (1 2 0.5) ); }
@@ -218,7 +197,7 @@ $AX"
 if command -v checkMesh >/dev/null 2>&1; then
     export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
     mkdir -p ofc/system
-    controlDict ofc
+    case_system ofc blockGrid
     cat >ofc/system/blockGridDict <<'EOF'
 x { segments ( (1 3 1) ); }
 y { segments ( (2 4 2) ); }

@@ -4,24 +4,11 @@
 # or face named; a hand-made skewed grid gives checkMesh's numbers (when
 # OpenFOAM is installed).
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
 
-pass() { echo "PASS $1"; }
-fail() { echo "FAIL $1: $2"; }
-check() { local n=$1; shift; if "$@"; then pass "$n"; else fail "$n" "$*"; fi; }
-
-mkdir -p good/system
-cat >good/system/controlDict <<'EOF'
-FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }
-application checkGrid; startFrom startTime; startTime 0; stopAt endTime; endTime 1; deltaT 1;
-writeControl timeStep; writeInterval 1;
-EOF
-# the least checkMesh needs besides controlDict
-printf 'FoamFile { version 2.0; format ascii; class dictionary; object fvSchemes; }\n%s\n' \
-    'ddtSchemes {} gradSchemes {} divSchemes {} laplacianSchemes {} interpolationSchemes {} snGradSchemes {}' \
-    >good/system/fvSchemes
-printf 'FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }\n' >good/system/fvSolution
+case_system good checkGrid
 cat >good/system/blockGridDict <<'EOF'
 x { segments ( (1 4 2) ); }
 y { segments ( (1 3 1) ); }

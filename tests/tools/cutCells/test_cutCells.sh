@@ -25,32 +25,16 @@
 #   - malformed geometryDict and cutCellsDict: file:line messages, non-zero
 #     exit, no crash, the grid on disk untouched.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 TOP=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
 
-pass() { echo "PASS $1${2:+: $2}"; }
-fail() { echo "FAIL $1: $2"; }
-header() { printf 'FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n' "$1"; }
-
 mkcase() { # dir n nz geometry-surfaces
     rm -rf "$1"
-    mkdir -p "$1/system"
-    local zb='zMin { name walls; } zMax { name walls; }'
-    [ "$3" = 1 ] && zb='zMin { name frontAndBack; type empty; } zMax { name frontAndBack; type empty; }'
-    { header blockGridDict
-      echo "x { segments ((1 $2 1)); }"
-      echo "y { segments ((1 $2 1)); }"
-      if [ "$3" = 1 ]; then echo "z { start 0.49; segments ((0.51 1 1)); }"; else echo "z { segments ((1 $2 1)); }"; fi
-      echo "boundary { xMin { name walls; } xMax { name walls; } yMin { name walls; } yMax { name walls; } $zb }"
-    } >"$1/system/blockGridDict"
-    { header geometryDict; printf 'surfaces\n{\n%s\n}\n' "$4"; } >"$1/system/geometryDict"
+    unit_box "$1" "$2" "$3"
+    geometry_dict "$1" "$4"
 }
-
-# fluid volume from a cutCells log
-fluid() { sed -n 's/^  fluid volume: *\([0-9.eE+-]*\) .*/\1/p' "$1"; }
-rel() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; printf "%.3e", d / (b < 0 ? -b : b) }'; }
-le() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a <= b) }'; }
 
 # ---- help and version ---------------------------------------------------------
 h=$("$BIN/cutCells" -help 2>&1)
@@ -80,11 +64,7 @@ fi
     pass cutCells_sphere_checkGrid || fail cutCells_sphere_checkGrid "$(tail -n 3 sphere/log.checkGrid)"
 if command -v checkMesh >/dev/null 2>&1; then
     export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
-    header controlDict >sphere/system/controlDict
-    echo 'application cutCells; startTime 0; endTime 1; deltaT 1; writeControl timeStep; writeInterval 1;' >>sphere/system/controlDict
-    printf '%s\nddtSchemes {} gradSchemes {} divSchemes {} laplacianSchemes {} interpolationSchemes {} snGradSchemes {}\n' \
-        "$(header fvSchemes)" >sphere/system/fvSchemes
-    header fvSolution >sphere/system/fvSolution
+    case_system sphere cutCells
     checkMesh -case sphere >sphere/log.checkMesh 2>&1
     errs=$(grep -E '^ *\*\*\*' sphere/log.checkMesh | grep -v -e 'skewness' -e 'aspect' -e 'non-orth')
     if grep -q 'cells:' sphere/log.checkMesh && [ -z "$errs" ]; then

@@ -21,13 +21,10 @@
 #     geometryDict:line and the OBJ's file:line; an open OBJ surface is
 #     refused as not watertight.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 TOP=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
-
-pass() { echo "PASS $1${2:+: $2}"; }
-fail() { echo "FAIL $1: $2"; }
-header() { printf 'FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n' "$1"; }
 
 mkcase() { # dir n geometry-surfaces
     rm -rf "$1"
@@ -46,8 +43,6 @@ cut() {
         "$BIN/cutCells" -case "$1" >"$1/log.cutCells" 2>&1 &&
         sed -n 's/^  fluid volume: *\([0-9.eE+-]*\) .*/\1/p' "$1/log.cutCells"
 }
-absdiff() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; printf "%.3g", d }'; }
-le() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a <= b) }'; }
 check() { # name value reference tolerance what
     if [ -z "$2" ] || [ -z "$3" ]; then
         fail "$1" "cutCells failed (fluid '$2', reference '$3')"

@@ -18,12 +18,9 @@
 #     0.064, fluid 0.552;
 #   - O and B both outward: B is repaired into a cavity, fluid 0.552.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
-
-pass() { echo "PASS $1${2:+: $2}"; }
-fail() { echo "FAIL $1: $2"; }
-header() { printf 'FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n' "$1"; }
 
 # DIR/shells.stl (ascii) from "lo hi dir [flip]" lines on stdin: the box
 # [lo + dx, hi + dx] x [lo, hi]^2, outward (dir 1) or inward (-1), with its
@@ -78,7 +75,6 @@ box() { # name lo hi dx
         'BEGIN { printf "%s { shape box; min (%.17g %s %s); max (%.17g %s %s); }", n, lo + dx, lo, lo, hi + dx, hi, hi }'
 }
 
-fluid() { sed -n 's/^  fluid volume: *\([0-9.eE+-]*\) .*/\1/p' "$1"; }
 
 cut() { # dir: prints the fluid volume, nothing when a tool fails
     "$BIN/blockGrid" -case "$1" >"$1/log.blockGrid" 2>&1 && "$BIN/cutCells" -case "$1" >"$1/log.cutCells" 2>&1 &&

@@ -3,6 +3,7 @@
 # keywords as read (after #include and $ expansion), and reports bad input
 # as file:line with exit status 1.  Runs in a scratch directory.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 DQ="$BIN/dictQuery"
 if [ ! -x "$DQ" ]; then
@@ -10,8 +11,6 @@ if [ ! -x "$DQ" ]; then
     exit 1
 fi
 
-pass() { echo "PASS $1"; }
-fail() { echo "FAIL $1: $2"; }
 # check NAME EXPECTED ACTUAL
 check() { if [ "$2" = "$3" ]; then pass "$1"; else fail "$1" "expected '$2', got '$3'"; fi; }
 

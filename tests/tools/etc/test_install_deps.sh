@@ -8,12 +8,10 @@
 # simulation (-s), which goes to ./sim.log and prints "Remv VICTIM" for
 # each package given that $REMOVES lists as "PKG=VICTIM".
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 top=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
 deps=$top/etc/install-deps
 scratch=$PWD
-
-pass() { echo "PASS $1${2:+: $2}"; }
-fail() { echo "FAIL $1: $2"; }
 
 mkdir -p "$scratch/stub"
 cat > "$scratch/stub/dpkg-query" <<'EOF'

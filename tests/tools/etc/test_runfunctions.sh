@@ -5,12 +5,10 @@
 # shell scripts standing in for tools, so the tests need no built tool except
 # getApplication's dictQuery (SKIP when it is not built yet).
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 top=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
 bin=${KIESEL_BIN:-$top/bin}
 scratch=$PWD
-
-pass() { echo "PASS $1"; }
-fail() { echo "FAIL $1: $2"; }
 
 # A fake application: prints to stdout and stderr, counts its runs in
 # ./runs, exits with the status given as first argument.

@@ -12,12 +12,11 @@
 #     python3, reads the 2-D grid's file through pvpython and passes (16 cells, sum of
 #     areas x thickness = 0.1 within 1e-12).
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 TOP=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
 
-pass() { echo "PASS $1${2:+: $2}"; }
-fail() { echo "FAIL $1: $2"; }
 PY=/usr/bin/python3
 
 if ! $PY -c 'import vtk' 2>/dev/null; then

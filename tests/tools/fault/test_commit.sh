@@ -24,12 +24,9 @@
 #     too large), exit status 1 (not a signal), grid A untouched, no
 #     temporary left.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
-
-pass() { echo "PASS $1${2:+: $2}"; }
-fail() { echo "FAIL $1: $2"; }
-header() { printf 'FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n' "$1"; }
 
 blockdict() { # file nx ny
     { header blockGridDict

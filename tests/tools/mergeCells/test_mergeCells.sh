@@ -15,15 +15,9 @@
 # chain: 3x1 unit cells, fluid below y = 0.1 + 0.05 x: slivers 0.125,
 #   0.175, 0.225 chain into one cell of 0.525.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
-
-pass() { echo "PASS $1"; }
-fail() { echo "FAIL $1: $2"; }
-check() { # name, condition-command...
-    local n=$1; shift
-    if "$@"; then pass "$n"; else fail "$n" "$*"; fi
-}
 
 # cutcase DIR NX NY "x0 x1 ..." "y0 y1 ..." c0 c1 c2: writes DIR/constant/polyMesh
 # (with cartesianGrid, cellParent, boundaryNormal) and DIR/cut.stream

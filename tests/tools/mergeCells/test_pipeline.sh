@@ -15,22 +15,14 @@
 #   - the pipe "blockGrid -o - | cutCells -i - -o - | mergeCells -i -"
 #     writes byte-identical files to the tools run one by one.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
-
-pass() { echo "PASS $1${2:+: $2}"; }
-fail() { echo "FAIL $1: $2"; }
-check() { # name, condition-command...
-    local n=$1; shift
-    if "$@"; then pass "$n"; else fail "$n" "$*"; fi
-}
 
 if [ ! -x "$BIN/cutCells" ]; then
     echo "SKIP pipeline: $BIN/cutCells is not built"
     exit 0
 fi
-
-header() { printf 'FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n' "$1"; }
 
 mkcase() { # dir nx nz zlo zhi geometry-body
     mkdir -p "$1/system"
@@ -47,14 +39,7 @@ mkcase() { # dir nx nz zlo zhi geometry-body
       echo "boundary { xMin { name walls; } xMax { name walls; } yMin { name walls; } yMax { name walls; } $zb }"
     } >"$1/system/blockGridDict"
     { header geometryDict; echo "surfaces { body { type wall; flow outside; $6 } }"; } >"$1/system/geometryDict"
-    { header controlDict
-      echo 'application mergeCells; startFrom startTime; startTime 0; stopAt endTime; endTime 1; deltaT 1;'
-      echo 'writeControl timeStep; writeInterval 1; writeFormat ascii; writeCompression off;'
-    } >"$1/system/controlDict"
-    printf '%s\n%s\n' "$(header fvSchemes)" \
-        'ddtSchemes {} gradSchemes {} divSchemes {} laplacianSchemes {} interpolationSchemes {} snGradSchemes {}' \
-        >"$1/system/fvSchemes"
-    header fvSolution >"$1/system/fvSolution"
+    case_system "$1" mergeCells
 }
 
 # volumes.py CUT MERGED LOG THRESHOLD: the independent checks; prints

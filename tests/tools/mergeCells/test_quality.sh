@@ -13,12 +13,10 @@
 #     them;
 #   - a negative maxSkewness is refused with file:line.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 TOP=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
-
-pass() { echo "PASS $1${2:+: $2}"; }
-fail() { echo "FAIL $1: $2"; }
 
 for t in blockGrid cutCells mergeCells checkGrid; do
     if [ ! -x "$BIN/$t" ]; then
@@ -26,8 +24,6 @@ for t in blockGrid cutCells mergeCells checkGrid; do
         exit 0
     fi
 done
-
-header() { printf 'FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n' "$1"; }
 
 # mkcase name: the tutorial's system directory, or the same grid written here
 mkcase() {
@@ -54,14 +50,7 @@ mkcase() {
       echo "  yMin { name walls; type wall; } yMax { name walls; type wall; } $zb }"
     } >$c/system/blockGridDict
     { header geometryDict; echo "surfaces { $body }"; } >$c/system/geometryDict
-    { header controlDict
-      echo 'application mergeCells; startFrom startTime; startTime 0; stopAt endTime; endTime 1; deltaT 1;'
-      echo 'writeControl timeStep; writeInterval 1; writeFormat ascii; writeCompression off;'
-    } >$c/system/controlDict
-    printf '%s\n%s\n' "$(header fvSchemes)" \
-        'ddtSchemes {} gradSchemes {} divSchemes {} laplacianSchemes {} interpolationSchemes {} snGradSchemes {}' \
-        >$c/system/fvSchemes
-    header fvSolution >$c/system/fvSolution
+    case_system $c mergeCells
 }
 
 # max skewness from a checkGrid log

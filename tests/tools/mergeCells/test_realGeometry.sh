@@ -20,13 +20,11 @@
 #     relative (SKIP without checkMesh).
 # SKIP when OpenFOAM's example surfaces are not installed.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 TOP=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
 GEO=/usr/share/doc/openfoam-examples/examples/resources/geometry
-
-pass() { echo "PASS $1${2:+: $2}"; }
-fail() { echo "FAIL $1: $2"; }
 
 for t in blockGrid cutCells mergeCells checkGrid; do
     if [ ! -x "$BIN/$t" ]; then
@@ -44,8 +42,6 @@ if command -v checkMesh >/dev/null 2>&1; then
     export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
 fi
 
-header() { printf 'FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n' "$1"; }
-
 # mkcase name surface flow "x-axis" "y-axis" "z-axis" (blockGridDict axis entries)
 mkcase() {
     local c=$1
@@ -59,15 +55,8 @@ mkcase() {
     { header geometryDict
       echo "surfaces { body { type wall; flow $3; shape stl; file \"$GEO/$2.stl.gz\"; } }"
     } >$c/system/geometryDict
-    { header controlDict
-      echo 'application mergeCells; startFrom startTime; startTime 0; stopAt endTime; endTime 1; deltaT 1;'
-      echo 'writeControl timeStep; writeInterval 1; writeFormat binary; writeCompression off;'
-      echo 'writePrecision 15;   // checkMesh prints its numbers with it'
-    } >$c/system/controlDict
-    printf '%s\n%s\n' "$(header fvSchemes)" \
-        'ddtSchemes {} gradSchemes {} divSchemes {} laplacianSchemes {} interpolationSchemes {} snGradSchemes {}' \
-        >$c/system/fvSchemes
-    header fvSolution >$c/system/fvSolution
+    # writePrecision: checkMesh prints its numbers with it
+    case_system $c mergeCells binary 'writePrecision 15;'
 }
 
 maxskew() { sed -n 's/^ *Max skewness = \([0-9.e+-]*\).*/\1/p' "$1"; }

@@ -7,16 +7,10 @@
 # streams the same CSV, -latestTime, and bad dictionaries fail with
 # file:line.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 PY=/usr/bin/python3
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
-
-pass() { echo "PASS $1"; }
-fail() { echo "FAIL $1: $2"; }
-check() { # name, condition-command...
-    local n=$1; shift
-    if "$@"; then pass "$n"; else fail "$n" "$*"; fi
-}
 
 mkdir -p c/system c/0
 cat >c/system/blockGridDict <<'EOF'

@@ -7,15 +7,9 @@
 # The fields and cell volumes are read back by a small Python parser
 # (ascii fields; volumes from the grid's cartesianGrid).
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
-
-pass() { echo "PASS $1"; }
-fail() { echo "FAIL $1: $2"; }
-check() { # name, condition-command...
-    local n=$1; shift
-    if "$@"; then pass "$n"; else fail "$n" "$*"; fi
-}
 
 # ---- the case: 20 x 16 x 18 graded cells on the unit cube ----
 mkdir -p c/system c/0

@@ -24,33 +24,19 @@
 #   - malformed voronoiGridDict and geometryDict: file:line messages,
 #     non-zero exit, the grid on disk untouched.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 TOP=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
 
-pass() { echo "PASS $1${2:+: $2}"; }
-fail() { echo "FAIL $1: $2"; }
-header() { printf 'FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n' "$1"; }
-
 mkcase() { # dir n nz geometry-surfaces (empty: no geometryDict)
     rm -rf "$1"
-    mkdir -p "$1/system"
-    local zb='zMin { name walls; } zMax { name walls; }'
-    [ "$3" = 1 ] && zb='zMin { name frontAndBack; type empty; } zMax { name frontAndBack; type empty; }'
-    { header blockGridDict
-      echo "x { segments ((1 $2 1)); }"
-      echo "y { segments ((1 $2 1)); }"
-      if [ "$3" = 1 ]; then echo "z { start 0.49; segments ((0.51 1 1)); }"; else echo "z { segments ((1 $2 1)); }"; fi
-      echo "boundary { xMin { name walls; } xMax { name walls; } yMin { name walls; } yMax { name walls; } $zb }"
-    } >"$1/system/blockGridDict"
-    [ -n "$4" ] && { header geometryDict; printf 'surfaces\n{\n%s\n}\n' "$4"; } >"$1/system/geometryDict"
+    unit_box "$1" "$2" "$3"
+    [ -n "$4" ] && geometry_dict "$1" "$4"
     "$BIN/blockGrid" -case "$1" >"$1/log.blockGrid" 2>&1
 }
 
-fluid() { sed -n 's/^  fluid volume: *\([0-9.eE+-]*\).*/\1/p' "$1"; }
 vmin() { sed -n 's/^  smallest cell volume: *\([0-9.eE+-]*\) (bound from a: \([0-9.eE+-]*\)).*/\1 \2/p' "$1"; }
-rel() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; printf "%.3e", d / (b < 0 ? -b : b) }'; }
-le() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a <= b) }'; }
 ncells() { sed -n 's/^ *nCells: *//p' "$1" | head -1; }
 sphere_exact=$(awk 'BEGIN { printf "%.15g", 1 - 4 / 3 * 3.141592653589793 * 0.027 }')
 

@@ -6,6 +6,7 @@
 # test_vtk_reader.py.  If OpenFOAM's foamToVTK is installed, its -legacy
 # output is compared with ours (file layout and cell count); SKIP otherwise.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 TOP=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
 HERE=$TOP/tests/tools/writeVTK
@@ -13,8 +14,6 @@ TOOL=$BIN/writeVTK
 PY=/usr/bin/python3
 export PYTHONDONTWRITEBYTECODE=1   # the case writer is imported from the source tree
 
-pass() { echo "PASS $1"; }
-fail() { echo "FAIL $1: $2"; }
 check() { # name condition-message; runs the remaining args as the test
     local name=$1 why=$2; shift 2
     if "$@"; then pass "$name"; else fail "$name" "$why"; fi
