@@ -34,7 +34,7 @@ enum { MAX_UNIFORM = 1 << 25 };   /* numbers created by an N{v} shorthand */
 
 /* A number a DN_LABELS list may hold: "-0" is not one, as it would be
    written back as 0 and the list would not read back the same. */
-static int label_value(double x, int is_int) { return is_int && dict_fits_int(x) && !(x == 0 && signbit(x)); }
+static inline int label_value(double x, int is_int) { return is_int && dict_fits_int(x) && !(x == 0 && signbit(x)); }
 
 /* ---- compaction ---- */
 
@@ -190,7 +190,7 @@ static void fast_free(Fast *f)
     free(f->off);
 }
 
-static void fast_push(Fast *f, double x, int is_int)
+static inline void fast_push(Fast *f, double x, int is_int)
 {
     if (f->nv == f->cv) mem_grow((void **)&f->v, &f->cv, f->nv + 1, sizeof *f->v);
     f->v[f->nv++] = x;
@@ -219,7 +219,7 @@ static int equal_lengths(const int *off, size_t noff, size_t nv, int *width)
 }
 
 /* Scans whitespace only (a comment makes the fast path give up). */
-static const char *fast_ws(const char *p, const char *end, int *line)
+static inline const char *fast_ws(const char *p, const char *end, int *line)
 {
     while (p < end && dict_is_space(*p)) {
         if (*p == '\n') (*line)++;
@@ -229,7 +229,7 @@ static const char *fast_ws(const char *p, const char *end, int *line)
 }
 
 /* One number ending at a delimiter, or NULL. */
-static const char *fast_num(const char *p, const char *end, double *x, int *is_int)
+static inline const char *fast_num(const char *p, const char *end, double *x, int *is_int)
 {
     size_t n = foam_parse_number(p, end, x, is_int);
     if (n == 0 || !dict_is_delim(p + n, end) || !isfinite(*x)) return NULL;
