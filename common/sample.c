@@ -222,7 +222,7 @@ static char *empty_faces(const Mesh *m)
 {
     char *e = MEM_NEW(char, m->nfaces - m->ninternal);
     for (int p = 0; p < m->npatches; p++) {
-        if (strcmp(m->patches[p].type, "empty")) continue;
+        if (!mesh_patch_is_empty(&m->patches[p])) continue;
         for (int i = 0; i < m->patches[p].size; i++) e[m->patches[p].start + i - m->ninternal] = 1;
     }
     return e;

@@ -1512,10 +1512,7 @@ static void mesh_alloc(const VoronoiInput *in, const Plan *pl, int ncells, Mesh 
     for (int p = 0; p < in->npatches; p++) {
         const Patch *P = &in->patches[p];
         Patch *Q = &out->patches[p];
-        Q->name = mem_strdup(P->name);
-        Q->type = mem_strdup(P->type);
-        Q->neighbour = P->neighbour ? mem_strdup(P->neighbour) : NULL;
-        Q->groups = P->groups ? mem_strdup(P->groups) : NULL;
+        mesh_patch_copy(P, Q);
         Q->start = f;
         Q->size = pl->pface[p];
         cur->face[p + 1] = f;
