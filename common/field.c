@@ -1,7 +1,7 @@
 /*
 ** field.c: volScalarField / volVectorField files.  See field.h.  What
-** the patch types mean and the face values they give are in fieldbc.c,
-** the fields of a time directory in fieldtime.c.
+** the patch types mean and the face values they give are in field_bc.c,
+** the fields of a time directory in field_time.c.
 **
 ** Reading goes through the dictionary parser (dict.c), which already
 ** handles ascii, binary and gzip, so this file only interprets entries:

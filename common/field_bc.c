@@ -1,5 +1,5 @@
 /*
-** fieldbc.c: boundary conditions of vol fields (field.h): which patch
+** field_bc.c: boundary conditions of vol fields (field.h): which patch
 ** types carry a value, which are constraint types, and the face values a
 ** condition gives from the internal field.
 **

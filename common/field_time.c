@@ -1,5 +1,5 @@
 /*
-** fieldtime.c: the vol fields of a time directory (field.h): the path of
+** field_time.c: the vol fields of a time directory (field.h): the path of
 ** a field in <case>/<time>, reading one field there, and reading all of
 ** them (or those asked for) in name order.
 **
