@@ -92,27 +92,52 @@
 /* on-plane tolerance of the clipper, x box size: far above round-off of
    the vertex coordinates, far below the weld distance */
 #define EPS_CLIP 1e-13
+/* slack on the reach test d/2 < R */
+#define REACH_SLACK (1.0 + 1e-9)
+
+static int coincide(const VoronoiInput *in, int i, int j, Err *e)
+{
+    return err_set(e, NULL, 0, "voronoi: seeds %d and %d coincide (%g %g %g)", i, j, in->x[3 * i],
+                   in->x[3 * i + 1], in->x[3 * i + 2]);
+}
+
+/* Bisector clipping of seed i's cell, shell by shell; clip(ctx, j, d2)
+   returns the cell's new squared radius. */
+static int cell_search(Build *B, int i, double r2, double (*clip)(Build *, int, int, double), Err *e)
+{
+    const VoronoiInput *in = B->in;
+    double x[3] = {in->x[3 * i], in->x[3 * i + 1], in->x[3 * i + 2]};
+    if (in->flat_axis >= 0) x[in->flat_axis] = in->lo[in->flat_axis];
+    int b[3];
+    for (int a = 0; a < 3; a++) b[a] = voronoi_bucket_axis(&B->g, a, x[a]);
+    double dup2 = sq(VORONOI_MERGE * B->L);
+    for (int k = 0;; k++) {
+        if (k > 0) {
+            double sd = voronoi_shell_dist(&B->g, b, k, x);
+            if (sd == INFINITY) break;
+            if (sd > 0 && sd * sd > 4 * r2 * REACH_SLACK) break;
+        }
+        voronoi_shell_collect(&B->s, &B->g, in, i, b, k, x, 4 * r2 * REACH_SLACK);
+        for (int q = 0; q < B->s.n; q++) {
+            Cand cd = B->s.cand[q];
+            if (cd.d2 > 4 * r2 * REACH_SLACK) break;
+            if (cd.d2 <= dup2) return coincide(in, i, cd.j, e);
+            r2 = clip(B, i, cd.j, r2);
+        }
+    }
+    return 0;
+}
 
 static double clip3_seed(Build *B, int i, int j, double r2)
 {
-    const double *xi = B->in->x + 3 * i, *xj = B->in->x + 3 * j;
-    double n[3], m[3], len = 0;
-    for (int a = 0; a < 3; a++) {
-        n[a] = xj[a] - xi[a];
-        m[a] = 0.5 * (xi[a] + xj[a]);
-        len += n[a] * n[a];
-    }
-    len = sqrt(len);
-    for (int a = 0; a < 3; a++) n[a] /= len;
-    if (!voronoi_clip3(&B->c3, n, n[0] * m[0] + n[1] * m[1] + n[2] * m[2], B->eps, j)) return r2;
-    return voronoi_poly_radius3(&B->c3.p[B->c3.cur], xi);
+    return voronoi_clip3_bisector(&B->c3, B->in->x + 3 * i, B->in->x + 3 * j, B->eps, j, r2);
 }
 
 static int cell3(Build *B, int i, Err *e)
 {
     const VoronoiInput *in = B->in;
     voronoi_poly_box(&B->c3, in->lo, in->hi);
-    if (voronoi_cell_search(B, i, voronoi_poly_radius3(&B->c3.p[0], in->x + 3 * i), clip3_seed, e)) return -1;
+    if (cell_search(B, i, voronoi_poly_radius3(&B->c3.p[0], in->x + 3 * i), clip3_seed, e)) return -1;
     Poly *P = &B->c3.p[B->c3.cur];
     if (P->nf < 4) return err_set(e, NULL, 0, "voronoi: the cell of seed %d is empty", i);
     need(&B->gid, &B->gcap, (size_t)P->nv, sizeof(int));
@@ -169,20 +194,7 @@ static int ring_vertex(const Build *B, int l, int i, int o)
 static double clip2_seed(Build *B, int i, int j, double r2)
 {
     int ua = (B->in->flat_axis + 1) % 3, va = (B->in->flat_axis + 2) % 3;
-    const double *xi = B->in->x + 3 * i, *xj = B->in->x + 3 * j;
-    double n[2] = {xj[ua] - xi[ua], xj[va] - xi[va]};
-    double len = sqrt(n[0] * n[0] + n[1] * n[1]);
-    n[0] /= len;
-    n[1] /= len;
-    double off = n[0] * 0.5 * (xi[ua] + xj[ua]) + n[1] * 0.5 * (xi[va] + xj[va]);
-    if (!voronoi_clip2(&B->c2, n, off, B->eps, j)) return r2;
-    const Poly2 *P = &B->c2.p[B->c2.cur];
-    r2 = 0;
-    for (int k = 0; k < P->n; k++) {
-        double d = sq(P->x[2 * k] - xi[ua]) + sq(P->x[2 * k + 1] - xi[va]);
-        if (d > r2) r2 = d;
-    }
-    return r2;
+    return voronoi_clip2_bisector(&B->c2, B->in->x + 3 * i, B->in->x + 3 * j, ua, va, B->eps, j, r2);
 }
 
 static int cell2(Build *B, int i, Err *e)
@@ -204,7 +216,7 @@ static int cell2(Build *B, int i, Err *e)
         double d = sq(P->x[2 * k] - xi[ua]) + sq(P->x[2 * k + 1] - xi[va]);
         if (d > r2) r2 = d;
     }
-    if (voronoi_cell_search(B, i, r2, clip2_seed, e)) return -1;
+    if (cell_search(B, i, r2, clip2_seed, e)) return -1;
     P = &c->p[c->cur];
     if (P->n < 3) return err_set(e, NULL, 0, "voronoi: the cell of seed %d is empty", i);
     need(&B->gid, &B->gcap, (size_t)P->n, sizeof(int));

@@ -10,6 +10,7 @@
 */
 #include "voronoi_impl.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 void voronoi_poly2_reserve(Poly2 *p, int n)
@@ -35,7 +36,7 @@ void voronoi_poly2_push(Poly2 *Q, double u, double v, int lab)
 }
 
 /* Clips by nrm.x <= off in the plane (nrm a unit 2-vector). */
-int voronoi_clip2(Clip2 *c, const double nrm[2], double off, double eps, int lab)
+static int clip2(Clip2 *c, const double nrm[2], double off, double eps, int lab)
 {
     Poly2 *P = &c->p[c->cur], *Q = &c->p[1 - c->cur];
     need(&c->d, &c->dcap, (size_t)P->n, sizeof(double));
@@ -64,4 +65,26 @@ int voronoi_clip2(Clip2 *c, const double nrm[2], double off, double eps, int lab
     }
     c->cur = 1 - c->cur;
     return 1;
+}
+
+/* Clips the cell by the bisector half-plane of xi (the cell's seed) and xj
+   (3-D points; ua, va the axes of the plane), labelling the new edge lab.
+   Returns the cell's new squared radius about xi, or r2 when nothing was
+   cut. */
+double voronoi_clip2_bisector(Clip2 *c, const double *xi, const double *xj, int ua, int va, double eps, int lab,
+                              double r2)
+{
+    double n[2] = {xj[ua] - xi[ua], xj[va] - xi[va]};
+    double len = sqrt(n[0] * n[0] + n[1] * n[1]);
+    n[0] /= len;
+    n[1] /= len;
+    double off = n[0] * 0.5 * (xi[ua] + xj[ua]) + n[1] * 0.5 * (xi[va] + xj[va]);
+    if (!clip2(c, n, off, eps, lab)) return r2;
+    const Poly2 *P = &c->p[c->cur];
+    r2 = 0;
+    for (int k = 0; k < P->n; k++) {
+        double d = sq(P->x[2 * k] - xi[ua]) + sq(P->x[2 * k + 1] - xi[va]);
+        if (d > r2) r2 = d;
+    }
+    return r2;
 }

@@ -132,7 +132,7 @@ static void cap_face(Clip *c, Poly *Q, int n, const double nrm[3], int lab)
 /* Clips the cell by the half-space nrm.x <= off (nrm a unit vector),
    labelling the new face lab; eps: on-plane tolerance.  Returns 1 when
    something was cut off. */
-int voronoi_clip3(Clip *c, const double nrm[3], double off, double eps, int lab)
+static int clip3(Clip *c, const double nrm[3], double off, double eps, int lab)
 {
     Poly *P = &c->p[c->cur], *Q = &c->p[1 - c->cur];
     need(&c->d, &c->dcap, (size_t)P->nv, sizeof(double));
@@ -199,4 +199,21 @@ double voronoi_poly_radius3(const Poly *P, const double *x)
         if (d > r2) r2 = d;
     }
     return r2;
+}
+
+/* Clips the cell by the bisector half-space of xi (the cell's seed) and
+   xj, labelling the new face lab.  Returns the cell's new squared radius
+   about xi, or r2 when nothing was cut. */
+double voronoi_clip3_bisector(Clip *c, const double *xi, const double *xj, double eps, int lab, double r2)
+{
+    double n[3], m[3], len = 0;
+    for (int a = 0; a < 3; a++) {
+        n[a] = xj[a] - xi[a];
+        m[a] = 0.5 * (xi[a] + xj[a]);
+        len += n[a] * n[a];
+    }
+    len = sqrt(len);
+    for (int a = 0; a < 3; a++) n[a] /= len;
+    if (!clip3(c, n, n[0] * m[0] + n[1] * m[1] + n[2] * m[2], eps, lab)) return r2;
+    return voronoi_poly_radius3(&c->p[c->cur], xi);
 }

@@ -223,21 +223,25 @@ typedef struct Cursor {
 
 void voronoi_buckets_build(Buckets *g, const VoronoiInput *in);
 void voronoi_buckets_free(Buckets *g);
-int voronoi_cell_search(Build *B, int i, double r2, double (*clip)(Build *, int, int, double), Err *e);
+int voronoi_bucket_axis(const Buckets *g, int a, double x);
+double voronoi_shell_dist(const Buckets *g, const int b[3], int k, const double x[3]);
+void voronoi_shell_collect(Search *s, const Buckets *g, const VoronoiInput *in, int self, const int b[3], int k,
+                           const double x[3], double r2max);
 
 /* ---- voronoi_clip3.c ---- */
 
 void voronoi_clip3_free(Clip *c);
 void voronoi_poly_box(Clip *c, const double lo[3], const double hi[3]);
-int voronoi_clip3(Clip *c, const double nrm[3], double off, double eps, int lab);
 double voronoi_poly_radius3(const Poly *P, const double *x);
+double voronoi_clip3_bisector(Clip *c, const double *xi, const double *xj, double eps, int lab, double r2);
 
 /* ---- voronoi_clip2.c ---- */
 
 void voronoi_poly2_reserve(Poly2 *p, int n);
 void voronoi_clip2_free(Clip2 *c);
 void voronoi_poly2_push(Poly2 *Q, double u, double v, int lab);
-int voronoi_clip2(Clip2 *c, const double nrm[2], double off, double eps, int lab);
+double voronoi_clip2_bisector(Clip2 *c, const double *xi, const double *xj, int ua, int va, double eps, int lab,
+                              double r2);
 
 /* ---- voronoi_weld.c ---- */
 

@@ -4,14 +4,14 @@
 ** The seeds are sorted into a uniform grid of buckets over the box, about
 ** one seed per bucket (a box much longer than wide has its finest axis
 ** halved until the count is sane).  A cell is clipped by the seeds of the
-** buckets at Chebyshev index distance k = 0, 1, 2, ... from its own,
-** nearest first inside a shell; a seed at distance d can cut the cell only
-** when d/2 < R, R the largest distance from the seed to a cell vertex, so
-** the search ends when the nearest unvisited shell is farther than 2R
-** (times REACH_SLACK).  Rows and buckets of a shell wholly beyond that
-** reach are skipped unread.  Seeds outside the box sit in the border
-** buckets, which only makes them look nearer: the search stays exact.
-** Two seeds closer than VORONOI_MERGE x (box size) are an error.
+** buckets at Chebyshev index distance k = 0, 1, 2, ... from its own
+** (voronoi_shell_collect), nearest first inside a shell; a seed at
+** distance d can cut the cell only when d/2 < R, R the largest distance
+** from the seed to a cell vertex, so voronoi.c's loop over the shells ends
+** when the nearest unvisited shell (voronoi_shell_dist) is farther than
+** 2R.  Rows and buckets of a shell wholly beyond that reach are skipped
+** unread.  Seeds outside the box sit in the border buckets, which only
+** makes them look nearer: the search stays exact.
 */
 #include "voronoi_impl.h"
 
@@ -19,10 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* slack on the reach test d/2 < R */
-#define REACH_SLACK (1.0 + 1e-9)
-
-static int bucket_axis(const Buckets *g, int a, double x)
+int voronoi_bucket_axis(const Buckets *g, int a, double x)
 {
     double t = (x - g->org[a]) / g->h[a];
     if (!(t > 0)) return 0;
@@ -33,7 +30,7 @@ static int bucket_axis(const Buckets *g, int a, double x)
 static int bucket_of(const Buckets *g, const double x[3])
 {
     int b[3];
-    for (int a = 0; a < 3; a++) b[a] = bucket_axis(g, a, x[a]);
+    for (int a = 0; a < 3; a++) b[a] = voronoi_bucket_axis(g, a, x[a]);
     return b[0] + g->n[0] * (b[1] + g->n[1] * b[2]);
 }
 
@@ -95,7 +92,7 @@ void voronoi_buckets_free(Buckets *g)
 
 /* Distance from x (in bucket b) to the nearest point of the buckets at
    index distance >= k from b; INFINITY when there are none. */
-static double shell_dist(const Buckets *g, const int b[3], int k, const double x[3])
+double voronoi_shell_dist(const Buckets *g, const int b[3], int k, const double x[3])
 {
     double d = INFINITY;
     for (int a = 0; a < 3; a++) {
@@ -126,8 +123,8 @@ static double bucket_gap2(const Buckets *g, int a, int ia, double x)
    farther than that are skipped unread: on a lattice shell 2 is searched
    (its nearest side is nearer than the cell's reach) but holds nothing in
    reach. */
-static void shell_collect(Search *s, const Buckets *g, const VoronoiInput *in, int self, const int b[3],
-                          int k, const double x[3], double r2max)
+void voronoi_shell_collect(Search *s, const Buckets *g, const VoronoiInput *in, int self, const int b[3],
+                           int k, const double x[3], double r2max)
 {
     s->n = 0;
     int flat = in->flat_axis;
@@ -167,37 +164,4 @@ static void shell_collect(Search *s, const Buckets *g, const VoronoiInput *in, i
             }
         }
     }
-}
-
-static int coincide(const VoronoiInput *in, int i, int j, Err *e)
-{
-    return err_set(e, NULL, 0, "voronoi: seeds %d and %d coincide (%g %g %g)", i, j, in->x[3 * i],
-                   in->x[3 * i + 1], in->x[3 * i + 2]);
-}
-
-/* Bisector clipping of seed i's cell, shell by shell; clip(ctx, j, d2)
-   returns the cell's new squared radius. */
-int voronoi_cell_search(Build *B, int i, double r2, double (*clip)(Build *, int, int, double), Err *e)
-{
-    const VoronoiInput *in = B->in;
-    double x[3] = {in->x[3 * i], in->x[3 * i + 1], in->x[3 * i + 2]};
-    if (in->flat_axis >= 0) x[in->flat_axis] = in->lo[in->flat_axis];
-    int b[3];
-    for (int a = 0; a < 3; a++) b[a] = bucket_axis(&B->g, a, x[a]);
-    double dup2 = sq(VORONOI_MERGE * B->L);
-    for (int k = 0;; k++) {
-        if (k > 0) {
-            double sd = shell_dist(&B->g, b, k, x);
-            if (sd == INFINITY) break;
-            if (sd > 0 && sd * sd > 4 * r2 * REACH_SLACK) break;
-        }
-        shell_collect(&B->s, &B->g, in, i, b, k, x, 4 * r2 * REACH_SLACK);
-        for (int q = 0; q < B->s.n; q++) {
-            Cand cd = B->s.cand[q];
-            if (cd.d2 > 4 * r2 * REACH_SLACK) break;
-            if (cd.d2 <= dup2) return coincide(in, i, cd.j, e);
-            r2 = clip(B, i, cd.j, r2);
-        }
-    }
-    return 0;
 }
