@@ -14,7 +14,6 @@
 #include "dict.h"
 #include "err.h"
 #include "gridtool.h"
-#include "mem.h"
 #include "mesh.h"
 
 #include <stdio.h>

@@ -16,7 +16,6 @@
 #include "err.h"
 #include "geometry.h"
 #include "gridtool.h"
-#include "io.h"
 #include "mem.h"
 #include "mesh.h"
 

@@ -16,8 +16,6 @@
 #include "dict.h"
 #include "err.h"
 #include "gridtool.h"
-#include "io.h"
-#include "mem.h"
 #include "merge.h"
 #include "mesh.h"
 

@@ -14,7 +14,6 @@
 #include "case.h"
 #include "err.h"
 #include "field.h"
-#include "mem.h"
 #include "mesh.h"
 #include "runtime.h"
 #include "setfields.h"
