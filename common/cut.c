@@ -152,6 +152,25 @@ void cut_opts_default(CutOpts *o)
     o->snap = CUT_SNAP;
 }
 
+const DictKey cut_keys[] = {
+    {"snapTolerance", "1e-08", "cut points closer than this fraction of an edge to a grid vertex move onto it"},
+    {NULL, NULL, NULL}};
+
+int cut_read_opts(const char *path, CutOpts *o, Err *e)
+{
+    cut_opts_default(o);
+    Dict *d = dict_read(path, e);
+    int rc = !d || dict_check_keys(d, cut_keys, e) || dict_scalar_or(d, "snapTolerance", o->snap, &o->snap, e);
+    /* snapping moves a point by at most a quarter edge, so neighbouring
+       cut points on one edge can never swap */
+    if (!rc && !(o->snap >= 0 && o->snap < 0.25)) {
+        const DictEntry *en = dict_find(d, "snapTolerance");
+        rc = err_set(e, path, en ? en->line : 0, "snapTolerance must be in [0, 0.25), found %g", o->snap);
+    }
+    dict_free(d);
+    return rc ? -1 : 0;
+}
+
 /* ---- the cut-point table ---- */
 
 static size_t slot_of(const Ctx *c, int64_t key)

@@ -76,6 +76,11 @@ typedef struct CutStats {
 } CutStats;
 
 void cut_opts_default(CutOpts *o);
+/* Keywords of system/cutCellsDict (for -help and checking). */
+extern const DictKey cut_keys[];
+/* Reads the dictionary at path into o, over the defaults: fails with
+   file:line on an unknown keyword or a value out of range. */
+int cut_read_opts(const char *path, CutOpts *o, Err *e);
 
 /* Cuts grid (a block grid: cart extras present, cell i + nx*(j + ny*k)
    is Cartesian cell (i, j, k)) by g into out (need not be initialised).

@@ -78,6 +78,7 @@
 #include "quality.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -90,6 +91,53 @@ void merge_opts_default(MergeOpts *o)
     o->criterion = MERGE_NORMAL;
     o->max_iter = 10;
     o->max_skewness = QUALITY_SKEW_HIGH;
+}
+
+const DictKey merge_keys[] = {
+    {"threshold", "0.5", "M_V: cells with V <= M_V x (parent Cartesian volume) are merged, in (0, 1]"},
+    {"criterion", "normal", "merge axis: normal = argmax |n_i|, normalSpacing = argmax |n_i h_i|"},
+    {"maxIter", "10", "rounds of re-merging clusters still below the bound, and of the quality pass (>= 0)"},
+    {"maxSkewness", "4", "quality pass: clusters with a face skewness above this merge further (0 = off, >= 0)"},
+    {NULL, NULL, NULL}};
+
+const char *const merge_criteria[] = {"normal", "normalSpacing", NULL};
+
+static int bad_value(Err *e, const char *path, const Dict *d, const char *key, const char *what)
+{
+    const DictEntry *en = dict_find(d, key);
+    return err_set(e, path, en ? en->line : 0, "%s", what);
+}
+
+/* The ranges: a threshold of 0 merges nothing, above 1 every cell. */
+static int check_opts(const MergeOpts *o, const char *path, const Dict *d, Err *e)
+{
+    char msg[128];
+    if (!(o->threshold > 0 && o->threshold <= 1)) {
+        snprintf(msg, sizeof msg, "threshold must be in (0, 1], found %g", o->threshold);
+        return bad_value(e, path, d, "threshold", msg);
+    }
+    if (o->max_iter < 0) {
+        snprintf(msg, sizeof msg, "maxIter must be >= 0, found %d", o->max_iter);
+        return bad_value(e, path, d, "maxIter", msg);
+    }
+    if (!(o->max_skewness >= 0)) {
+        snprintf(msg, sizeof msg, "maxSkewness must be >= 0, found %g", o->max_skewness);
+        return bad_value(e, path, d, "maxSkewness", msg);
+    }
+    return 0;
+}
+
+int merge_read_opts(const char *path, MergeOpts *o, Err *e)
+{
+    merge_opts_default(o);
+    Dict *d = dict_read(path, e);
+    int rc = !d || dict_check_keys(d, merge_keys, e) ||
+             dict_scalar_or(d, "threshold", o->threshold, &o->threshold, e) ||
+             dict_choice_or(d, "criterion", merge_criteria, o->criterion, &o->criterion, e) ||
+             dict_label_or(d, "maxIter", o->max_iter, &o->max_iter, e) ||
+             dict_scalar_or(d, "maxSkewness", o->max_skewness, &o->max_skewness, e) || check_opts(o, path, d, e);
+    dict_free(d);
+    return rc ? -1 : 0;
 }
 
 const char *merge_reason_name(int reason)
