@@ -79,7 +79,7 @@ void cut_opts_default(CutOpts *o);
 
 /* Cuts grid (a block grid: cart extras present, cell i + nx*(j + ny*k)
    is Cartesian cell (i, j, k)) by g into out (need not be initialised).
-   out gets the Cartesian extras, cell_parent and wall_normal (mesh.h).
+   out gets the Cartesian extras, cell_parent and boundary_normal (mesh.h).
    Fails when the grid has no Cartesian extras, a surface's patch name
    clashes with a grid patch, or no cell is left. */
 int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o,
