@@ -41,7 +41,9 @@
 **     types; their faces are the fluid parts of the grid's boundary
 **     faces; cyclic pairs stay matched when the geometry is periodic).
 **     Every cut cell lies inside its Cartesian cell, there is at most one
-**     per Cartesian cell, and cell_parent records it.
+**     per Cartesian cell, and cell_parent records it; the cut-cell data
+**     contract (Mesh.cartcells, cartcells.h) calls a cell whole when all
+**     eight corners are fluid, else cut, with the volume computed here.
 **
 ** 2-D grids (one cell thick between empty patches) need the geometry
 ** flattened first (geometry_flatten at the grid's mid-plane); the cut

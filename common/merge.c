@@ -68,7 +68,9 @@
 ** close to Cartesian order.  cell_parent is the largest member's,
 ** boundary_normal follows the boundary faces (they keep their order), points
 ** no face uses any more are dropped (the others keep their order),
-** merge_map records each input cell's output cell.  Everything
+** merge_map records each input cell's output cell, and the cut-cell
+** data contract (cartcells.h) is the input's with the clusters renamed:
+** the member cell_parent names is master, the others slaves.  Everything
 ** is linear in the mesh size except the picks, which walk the faces of
 ** slave clusters and their candidates only.
 */

@@ -1,6 +1,7 @@
 /*
 ** vgrid.c: the boundary-conforming Voronoi grid (vgrid.h): seeds, cells,
-** patches, cell seeds and boundary normals.
+** patches, cell seeds, boundary normals and the cut-cell data contract
+** (cartcells.h: each cell's parent is the Cartesian cell holding its seed).
 */
 #include "vgrid.h"
 #include "cartcells.h"
