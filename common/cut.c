@@ -79,6 +79,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cartcells.h"
 #include "geom.h"
 #include "mem.h"
 #include "meshbuild.h"
@@ -1649,20 +1650,31 @@ static int number_cells(Ctx *c, int **parent)
     return nc;
 }
 
-/* Wall normals in final face order: meshbuild keeps the order of
+/* Boundary normals in final face order: meshbuild keeps the order of
    addition within a patch, so the k-th face added to a patch is its k-th
    face. */
-static void wall_normals(Ctx *c, Mesh *m)
+static void boundary_normals(Ctx *c, Mesh *m)
 {
     int nb = m->nfaces - m->ninternal;
-    m->wall_normal = mem_alloc(sizeof(double) * 3 * (size_t)(nb ? nb : 1));
+    m->boundary_normal = mem_alloc(sizeof(double) * 3 * (size_t)(nb ? nb : 1));
     int *next = mem_alloc(sizeof(int) * (size_t)m->npatches);
     for (int p = 0; p < m->npatches; p++) next[p] = m->patches[p].start;
     for (size_t w = 0; w < c->nwall; w++) {
         int f = next[c->wall[w].patch]++;
-        memcpy(m->wall_normal + 3 * (size_t)(f - m->ninternal), c->wall[w].n, 3 * sizeof(double));
+        memcpy(m->boundary_normal + 3 * (size_t)(f - m->ninternal), c->wall[w].n, 3 * sizeof(double));
     }
     free(next);
+}
+
+/* The cut-cell data contract (cartcells.h): a cell with all eight
+   corners fluid is its whole Cartesian cell, every other one is cut; the
+   volumes are the ones cell_faces computed. */
+static void cart_cells(const Ctx *c, Mesh *m)
+{
+    unsigned char *whole = mem_alloc((size_t)m->ncells + 1);
+    for (int cl = 0; cl < m->ncells; cl++) whole[cl] = c->lmask[m->cell_parent[cl]] == 255;
+    cartcells_build(m, c->cvol, whole, &m->cartcells);
+    free(whole);
 }
 
 static void stats(Ctx *c, const Mesh *m)
@@ -1734,7 +1746,8 @@ int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o, Mesh *out, C
     }
     out->cell_parent = parent;
     mesh_copy_cart(&grid->cart, &out->cart);
-    wall_normals(&c, out);
+    boundary_normals(&c, out);
+    cart_cells(&c, out);
     stats(&c, out);
     ctx_free(&c);
     return 0;

@@ -66,13 +66,16 @@
 ** are joined into one polygon (see "empty faces" below).  Output cells
 ** are numbered in order of their smallest member, so the numbering stays
 ** close to Cartesian order.  cell_parent is the largest member's,
-** wall_normal follows the boundary faces (they keep their order), points
+** boundary_normal follows the boundary faces (they keep their order), points
 ** no face uses any more are dropped (the others keep their order),
-** merge_map records each input cell's output cell.  Everything
+** merge_map records each input cell's output cell, and the cut-cell
+** data contract (cartcells.h) is the input's with the clusters renamed:
+** the member cell_parent names is master, the others slaves.  Everything
 ** is linear in the mesh size except the picks, which walk the faces of
 ** slave clusters and their candidates only.
 */
 #include "merge.h"
+#include "cartcells.h"
 #include "geom.h"
 #include "mem.h"
 #include "quality.h"
@@ -1436,7 +1439,7 @@ static void assemble(Work *w, const int *newid, int nout, Mesh *out)
     out->npatches = m->npatches;
     out->patches = MEM_NEW(Patch, (size_t)m->npatches);
     int g = ni;
-    if (m->wall_normal) out->wall_normal = mem_alloc(3 * sizeof(double) * ((size_t)(nf - ni) + 1));
+    if (m->boundary_normal) out->boundary_normal = mem_alloc(3 * sizeof(double) * ((size_t)(nf - ni) + 1));
     for (int p = 0; p < m->npatches; p++) {
         const Patch *pa = &m->patches[p];
         Patch *q = &out->patches[p];
@@ -1448,8 +1451,8 @@ static void assemble(Work *w, const int *newid, int nout, Mesh *out)
             if (jf >= 0) put_face(out, g, j.pts.v + j.off.v[jf], j.off.v[jf + 1] - j.off.v[jf], 0);
             else put_face(out, g, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], 0);
             out->owner[g] = newid[m->owner[f]];
-            if (m->wall_normal)
-                memcpy(out->wall_normal + 3 * (size_t)(g - ni), m->wall_normal + 3 * (size_t)(f - m->ninternal),
+            if (m->boundary_normal)
+                memcpy(out->boundary_normal + 3 * (size_t)(g - ni), m->boundary_normal + 3 * (size_t)(f - m->ninternal),
                        3 * sizeof(double));
             g++;
         }
@@ -1542,6 +1545,22 @@ static void stats_after(Work *w, const int *root, const char *stuck, int nout, M
     }
 }
 
+/* The cut-cell data contract of out (cartcells.h), composed with the
+   input's; an input without one (a cut grid written before it existed)
+   gets one from its cellParent and volumes first, when cellParent names
+   one cell per Cartesian cell. */
+static void merge_cart_cells(const Mesh *in, const double *vol, const int *newid, Mesh *out)
+{
+    CartCells base;
+    const CartCells *cc = &in->cartcells;
+    if (cc->n <= 0) {
+        if (cartcells_build(in, vol, NULL, &base)) return;
+        cc = &base;
+    }
+    cartcells_merge(cc, newid, out, &out->cartcells);
+    if (cc == &base) cartcells_free(&base);
+}
+
 static int check_input(const Mesh *in, const MergeOpts *o, Err *e)
 {
     if (!(o->threshold > 0 && o->threshold <= 1))
@@ -1600,6 +1619,7 @@ int merge_mesh(const Mesh *in, const MergeOpts *o, Mesh *out, MergeStats *st, Er
     mesh_copy_cart(&in->cart, &out->cart);
     out->cell_parent = mem_alloc(sizeof(int) * (size_t)nout);
     for (int C = 0; C < nout; C++) out->cell_parent[C] = in->cell_parent[w.big[root[C]]];
+    merge_cart_cells(in, g.cell_vol, newid, out);
     out->merge_map = newid;
     out->nmerge_old = nc;
     free(root);

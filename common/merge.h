@@ -96,7 +96,7 @@ const char *merge_reason_name(int reason);
 
 /* Merges the small cells of in (cell_parent and cart required) into out
    (need not be initialised).  out->merge_map gets in's cell count
-   entries: the output cell of each input cell.  wall_normal, when
+   entries: the output cell of each input cell.  boundary_normal, when
    present, follows the boundary faces.  out comes without cell faces and
    geometry (mesh_geometry computes them; the statistics come from the
    input).  Fills st (free with merge_stats_free). */

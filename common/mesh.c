@@ -21,6 +21,7 @@
 ** owner/neighbour lists, so the faces of a cell come in increasing order.
 */
 #include "mesh.h"
+#include "cartcells.h"
 #include "geom.h"
 #include "mem.h"
 
@@ -58,9 +59,10 @@ void mesh_free(Mesh *m)
     free(m->patches);
     for (int k = 0; k < 3; k++) free(m->cart.x[k]);
     free(m->cell_parent);
-    free(m->wall_normal);
+    free(m->boundary_normal);
     free(m->merge_map);
     free(m->cell_seed);
+    cartcells_free(&m->cartcells);
     free_geometry(m);
     free(m->cell_off);
     free(m->cell_faces);
@@ -199,6 +201,13 @@ int mesh_cell_spacing(const Mesh *m, int c, double h[3])
     long ijk[3] = {p % g->n[0], (p / g->n[0]) % g->n[1], p / nxy};
     for (int k = 0; k < 3; k++) h[k] = g->x[k][ijk[k] + 1] - g->x[k][ijk[k]];
     return 0;
+}
+
+const double *mesh_cell_node(const Mesh *m, int c)
+{
+    if (c < 0 || c >= m->ncells) return NULL;
+    if (m->cell_seed) return m->cell_seed + 3 * (size_t)c;
+    return m->cell_centre ? m->cell_centre + 3 * (size_t)c : NULL;
 }
 
 /* ---- 2-D detection ---- */

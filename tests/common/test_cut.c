@@ -128,9 +128,9 @@ static int check_grid(Mesh *m, char *why, size_t nwhy)
     }
     int nb = m->nfaces - m->ninternal;
     for (int f = 0; f < nb; f++) {
-        double l = sqrt(m->wall_normal[3 * f] * m->wall_normal[3 * f] +
-                        m->wall_normal[3 * f + 1] * m->wall_normal[3 * f + 1] +
-                        m->wall_normal[3 * f + 2] * m->wall_normal[3 * f + 2]);
+        double l = sqrt(m->boundary_normal[3 * f] * m->boundary_normal[3 * f] +
+                        m->boundary_normal[3 * f + 1] * m->boundary_normal[3 * f + 1] +
+                        m->boundary_normal[3 * f + 2] * m->boundary_normal[3 * f + 2]);
         if (fabs(l - 1) > 1e-12) {
             snprintf(why, nwhy, "boundary face %d: wall normal of length %g", f + m->ninternal, l);
             return -1;
@@ -571,7 +571,7 @@ TEST(cut_patches)
     /* the wall normal of the pipe is radial, pointing into the solid */
     int pp = m.npatches - 1;
     for (int f = m.patches[pp].start; f < m.patches[pp].start + m.patches[pp].size; f++) {
-        const double *w = m.wall_normal + 3 * (f - m.ninternal), *C = m.face_centre + 3 * f;
+        const double *w = m.boundary_normal + 3 * (f - m.ninternal), *C = m.face_centre + 3 * f;
         double ry = C[1] - 0.5, rz = C[2] - 0.5, rl = sqrt(ry * ry + rz * rz);
         EXPECT(fabs(w[0]) < 1e-12 && fabs(w[1] - ry / rl) < 1e-12 && fabs(w[2] - rz / rl) < 1e-12,
                "normal of face %d", f);
