@@ -34,6 +34,22 @@ int gridtool_args(Args *a, const ToolInfo *t, int out_is_in, Case *c, GridTool *
     return 0;
 }
 
+void gridtool_start(int argc, char **argv, const ToolInfo *t, int out_is_in, Args *a, Case *c, GridTool *g)
+{
+    Err e;
+    args_parse(argc, argv, t, a);
+    if (a->argc) err_fatal("unexpected argument '%s'", a->argv[0]);
+    if (gridtool_args(a, t, out_is_in, c, g, &e)) err_die(&e);
+}
+
+void gridtool_read(const Args *a, const GridTool *g, Mesh *m)
+{
+    Err e;
+    fprintf(a->info, "Reading grid from %s\n\n", strcmp(g->in, "-") ? g->in : "stdin");
+    mesh_init(m);
+    if (mesh_read(m, g->in, &e)) err_die(&e);
+}
+
 void gridtool_free(GridTool *g)
 {
     free(g->in);

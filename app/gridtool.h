@@ -32,6 +32,14 @@ typedef struct GridTool {
 int gridtool_args(Args *a, const ToolInfo *t, int out_is_in, Case *c, GridTool *g, Err *e);
 void gridtool_free(GridTool *g);
 
+/* A grid tool's start: parses the command line (no positional
+   arguments), prints the banner, opens the case and settles -i, -o and
+   the format, as gridtool_args; err_die on failure. */
+void gridtool_start(int argc, char **argv, const ToolInfo *t, int out_is_in, Args *a, Case *c, GridTool *g);
+/* "Reading grid from DIR" and the read of the -i grid into m; err_die
+   on failure. */
+void gridtool_read(const Args *a, const GridTool *g, Mesh *m);
+
 /* Bounding box, counts and patches, as blockMesh prints them. */
 void gridtool_print_info(FILE *f, const Mesh *m);
 /* "Writing polyMesh to DIR (binary, gzip)" and the write; err_die on

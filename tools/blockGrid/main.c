@@ -34,11 +34,9 @@ int main(int argc, char **argv)
 {
     Args a;
     Err e;
-    args_parse(argc, argv, &tool, &a);
-    if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
     Case cs;
     GridTool io;
-    if (gridtool_args(&a, &tool, 0, &cs, &io, &e)) err_die(&e);
+    gridtool_start(argc, argv, &tool, 0, &a, &cs, &io);
     char *dict_path = args_dict_path(&a, &cs, "system/blockGridDict", 0);
 
     fprintf(a.info, "Creating block grid from \"%s\"\n\n", dict_path);

@@ -72,11 +72,9 @@ int main(int argc, char **argv)
 {
     Args a;
     Err e;
-    args_parse(argc, argv, &tool, &a);
-    if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
     Case cs;
     GridTool io;
-    if (gridtool_args(&a, &tool, 1, &cs, &io, &e)) err_die(&e);
+    gridtool_start(argc, argv, &tool, 1, &a, &cs, &io);
     CutOpts co;
     cut_opts_default(&co);
     char *opts_path = args_dict_path(&a, &cs, "system/cutCellsDict", 1);
@@ -91,10 +89,8 @@ int main(int argc, char **argv)
         fprintf(a.info, "  surface %s (%s): flow %s\n", g.surf[s].name, g.surf[s].type,
                 g.surf[s].flow_inside ? "inside" : "outside");
 
-    fprintf(a.info, "Reading grid from %s\n\n", strcmp(io.in, "-") ? io.in : "stdin");
     Mesh grid;
-    mesh_init(&grid);
-    if (mesh_read(&grid, io.in, &e)) err_die(&e);
+    gridtool_read(&a, &io, &grid);
     int flat = mesh_empty_axis(&grid);
     if (flat >= 0 && grid.cart.n[0] > 0) {
         double mid = 0.5 * (grid.cart.x[flat][0] + grid.cart.x[flat][grid.cart.n[flat]]);

@@ -68,11 +68,9 @@ int main(int argc, char **argv)
 {
     Args a;
     Err e;
-    args_parse(argc, argv, &tool, &a);
-    if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
     Case cs;
     GridTool io;
-    if (gridtool_args(&a, &tool, 0, &cs, &io, &e)) err_die(&e);
+    gridtool_start(argc, argv, &tool, 0, &a, &cs, &io);
     MergeOpts mo;
     merge_opts_default(&mo);
     char *opts_path = args_dict_path(&a, &cs, "system/mergeCellsDict", 1);
@@ -80,10 +78,8 @@ int main(int argc, char **argv)
     fprintf(a.info, "Merging cells with V <= %g V_cart (criterion %s, maxIter %d, maxSkewness %g)\n", mo.threshold,
             merge_criteria[mo.criterion], mo.max_iter, mo.max_skewness);
 
-    fprintf(a.info, "Reading grid from %s\n\n", strcmp(io.in, "-") ? io.in : "stdin");
     Mesh grid, m;
-    mesh_init(&grid);
-    if (mesh_read(&grid, io.in, &e)) err_die(&e);
+    gridtool_read(&a, &io, &grid);
     MergeStats st;
     double t0 = args_wall(&a);
     if (merge_mesh(&grid, &mo, &m, &st, &e)) {

@@ -120,11 +120,9 @@ int main(int argc, char **argv)
 {
     Args a;
     Err e;
-    args_parse(argc, argv, &tool, &a);
-    if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
     Case cs;
     GridTool io;
-    if (gridtool_args(&a, &tool, 1, &cs, &io, &e)) err_die(&e);
+    gridtool_start(argc, argv, &tool, 1, &a, &cs, &io);
     SeedOpts so;
     seeds_opts_default(&so);
     char *opts_path = args_dict_path(&a, &cs, "system/voronoiGridDict", 1);
@@ -135,10 +133,8 @@ int main(int argc, char **argv)
     fprintf(a.info, "Seeds: %d boundary layer(s), boundary spacing %g h, minimum spacing %g h\n", so.layers,
             so.spacing, so.min_spacing);
 
-    fprintf(a.info, "Reading grid from %s\n\n", strcmp(io.in, "-") ? io.in : "stdin");
     Mesh grid;
-    mesh_init(&grid);
-    if (mesh_read(&grid, io.in, &e)) err_die(&e);
+    gridtool_read(&a, &io, &grid);
     int flat = mesh_empty_axis(&grid);
     if (flat >= 0 && grid.cart.n[0] > 0 && g.nsurf)
         fprintf(a.info, "2-D grid: the geometry is cut by the plane %c = %g\n\n", "xyz"[flat],
