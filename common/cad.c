@@ -137,8 +137,7 @@ typedef struct Quiet {
 
 static void quiet_begin(Quiet *q)
 {
-    fflush(stdout);
-    fflush(stderr);
+    fflush(NULL); /* every stream, stdout and stderr among them */
     q->saved[0] = q->saved[1] = -1;
     q->tmp = tmpfile();
     if (!q->tmp) return;
@@ -154,8 +153,7 @@ static void quiet_end(Quiet *q, char *text, size_t n)
 {
     text[0] = 0;
     if (!q->tmp) return;
-    fflush(stdout);
-    fflush(stderr);
+    fflush(NULL);
     for (int k = 0; k < 2; k++)
         if (q->saved[k] >= 0) {
             dup2(q->saved[k], k + 1);

@@ -28,7 +28,10 @@
 ** crossing is found on copies of the edge moved across it (offset_cut).
 ** Afterwards each fluid corner keeps a corner piece at least snap x (edge)
 ** wide, so no face or cell has zero size.  Vertices a crossing meets are
-** on the surface too (mark_vertex_crossings).  Being solid for the grid,
+** on the surface too (mark_vertex_crossings), and so are those next to
+** the surface whose cells' probes disagree (probe_corners: a corner of
+** the geometry both of whose faces lie in grid planes through it, which
+** no crossing meets).  Being solid for the grid,
 ** a vertex on the surface is then judged by each of its cells on its own
 ** (step 6, local_masks: a probe towards the cell's centre), so the cells
 ** on the fluid side of a face on a grid plane keep their whole volume
@@ -76,6 +79,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cartcells.h"
 #include "geom.h"
 #include "mem.h"
 #include "meshbuild.h"
@@ -147,6 +151,25 @@ typedef struct Ctx {
 void cut_opts_default(CutOpts *o)
 {
     o->snap = CUT_SNAP;
+}
+
+const DictKey cut_keys[] = {
+    {"snapTolerance", "1e-08", "cut points closer than this fraction of an edge to a grid vertex move onto it"},
+    {NULL, NULL, NULL}};
+
+int cut_read_opts(const char *path, CutOpts *o, Err *e)
+{
+    cut_opts_default(o);
+    Dict *d = dict_read(path, e);
+    int rc = !d || dict_check_keys(d, cut_keys, e) || dict_scalar_or(d, "snapTolerance", o->snap, &o->snap, e);
+    /* snapping moves a point by at most a quarter edge, so neighbouring
+       cut points on one edge can never swap */
+    if (!rc && !(o->snap >= 0 && o->snap < 0.25)) {
+        const DictEntry *en = dict_find(d, "snapTolerance");
+        rc = err_set(e, path, en ? en->line : 0, "snapTolerance must be in [0, 0.25), found %g", o->snap);
+    }
+    dict_free(d);
+    return rc ? -1 : 0;
 }
 
 /* ---- the cut-point table ---- */
@@ -520,6 +543,74 @@ static size_t snap_diagonal(Ctx *c, int64_t **list, size_t nl, size_t *lcap)
     return nl;
 }
 
+/* Does vertex v lie on the surface as the cells around it see it: do
+   probes PROBE x snap of the way from v towards the centres of its eight
+   cells disagree?  Beyond a side of the box the probe mirrors the cell
+   inside, so a face of the geometry on a side of the box is seen too. */
+static int probe_differs(const Ctx *c, int64_t v)
+{
+    int ijk[3], seen = -1;
+    vertex_ijk(c, v, ijk);
+    double eta = fmin(PROBE * c->snap, 0.25);
+    for (int q = 0; q < 8; q++) {
+        double x[3];
+        for (int a = 0; a < 3; a++) {
+            int up = (q >> a) & 1, lo = ijk[a] - up, in = lo < 0 ? 0 : lo >= c->n[a] ? c->n[a] - 1 : lo;
+            double w = c->x[a][in + 1] - c->x[a][in];
+            x[a] = c->x[a][ijk[a]] + eta * (up ? -w : w) / 2;
+        }
+        int f = geometry_fluid(c->g, x);
+        if (seen >= 0 && f != seen) return 1;
+        seen = f;
+    }
+    return 0;
+}
+
+/* Vertices on the surface that no crossing meets and no diagonal shows:
+   a corner of the geometry whose two faces lie in the grid planes through
+   the vertex (the rim of a slab thinner than a cell on a grid line, a
+   prism's edge on a grid line), so every grid line through it lies in a
+   face.  They are searched among the grid neighbours of the vertices
+   already known on the surface, outwards while new ones turn up: a fluid
+   one joins the snapping list, a solid one is marked; either way each of
+   its cells then judges it by its own probe (local_masks). */
+static size_t probe_corners(Ctx *c, int64_t **list, size_t nl, size_t *lcap)
+{
+    int64_t nvt = c->sv[2] * c->nv[2], *queue = NULL;
+    size_t nq = 0, qcap = 0;
+    char *seen = mem_alloc((size_t)nvt);
+    memset(seen, 0, (size_t)nvt);
+    for (int64_t v = 0; v < nvt; v++)
+        if (c->onsurf[v] || c->cls[v] == 2) {
+            seen[v] = 1;
+            mem_grow((void **)&queue, &qcap, nq + 1, sizeof *queue);
+            queue[nq++] = v;
+        }
+    for (size_t h = 0; h < nq; h++) {
+        int ijk[3];
+        vertex_ijk(c, queue[h], ijk);
+        for (int a = 0; a < 3; a++)
+            for (int dir = -1; dir <= 1; dir += 2) {
+                if (ijk[a] + dir < 0 || ijk[a] + dir >= c->nv[a]) continue;
+                int64_t w = queue[h] + dir * c->sv[a];
+                if (seen[w] || !probe_differs(c, w)) continue;
+                seen[w] = 1;
+                if (c->cls[w] == 1) {
+                    c->cls[w] = 2;
+                    mem_grow((void **)list, lcap, nl + 1, sizeof **list);
+                    (*list)[nl++] = w;
+                } else {
+                    c->onsurf[w] = 1;
+                }
+                mem_grow((void **)&queue, &qcap, nq + 1, sizeof *queue);
+                queue[nq++] = w;
+            }
+    }
+    free(queue);
+    free(seen);
+    return nl;
+}
+
 static void snap(Ctx *c)
 {
     int64_t *list = NULL;
@@ -543,7 +634,10 @@ static void snap(Ctx *c)
             mem_grow((void **)&list, &lcap, nl + 1, sizeof *list);
             list[nl++] = v;
         }
-    if (c->snap > 0) nl = snap_diagonal(c, &list, nl, &lcap);
+    if (c->snap > 0) {
+        nl = snap_diagonal(c, &list, nl, &lcap);
+        nl = probe_corners(c, &list, nl, &lcap);
+    }
     for (size_t i = 0; i < c->cap; i++) {
         CutPt *p = &c->tab[i];
         if (p->key < 0) continue;
@@ -1556,20 +1650,31 @@ static int number_cells(Ctx *c, int **parent)
     return nc;
 }
 
-/* Wall normals in final face order: meshbuild keeps the order of
+/* Boundary normals in final face order: meshbuild keeps the order of
    addition within a patch, so the k-th face added to a patch is its k-th
    face. */
-static void wall_normals(Ctx *c, Mesh *m)
+static void boundary_normals(Ctx *c, Mesh *m)
 {
     int nb = m->nfaces - m->ninternal;
-    m->wall_normal = mem_alloc(sizeof(double) * 3 * (size_t)(nb ? nb : 1));
+    m->boundary_normal = mem_alloc(sizeof(double) * 3 * (size_t)(nb ? nb : 1));
     int *next = mem_alloc(sizeof(int) * (size_t)m->npatches);
     for (int p = 0; p < m->npatches; p++) next[p] = m->patches[p].start;
     for (size_t w = 0; w < c->nwall; w++) {
         int f = next[c->wall[w].patch]++;
-        memcpy(m->wall_normal + 3 * (size_t)(f - m->ninternal), c->wall[w].n, 3 * sizeof(double));
+        memcpy(m->boundary_normal + 3 * (size_t)(f - m->ninternal), c->wall[w].n, 3 * sizeof(double));
     }
     free(next);
+}
+
+/* The cut-cell data contract (cartcells.h): a cell with all eight
+   corners fluid is its whole Cartesian cell, every other one is cut; the
+   volumes are the ones cell_faces computed. */
+static void cart_cells(const Ctx *c, Mesh *m)
+{
+    unsigned char *whole = mem_alloc((size_t)m->ncells + 1);
+    for (int cl = 0; cl < m->ncells; cl++) whole[cl] = c->lmask[m->cell_parent[cl]] == 255;
+    cartcells_build(m, c->cvol, whole, &m->cartcells);
+    free(whole);
 }
 
 static void stats(Ctx *c, const Mesh *m)
@@ -1641,7 +1746,8 @@ int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o, Mesh *out, C
     }
     out->cell_parent = parent;
     mesh_copy_cart(&grid->cart, &out->cart);
-    wall_normals(&c, out);
+    boundary_normals(&c, out);
+    cart_cells(&c, out);
     stats(&c, out);
     ctx_free(&c);
     return 0;

@@ -41,7 +41,9 @@
 **     types; their faces are the fluid parts of the grid's boundary
 **     faces; cyclic pairs stay matched when the geometry is periodic).
 **     Every cut cell lies inside its Cartesian cell, there is at most one
-**     per Cartesian cell, and cell_parent records it.
+**     per Cartesian cell, and cell_parent records it; the cut-cell data
+**     contract (Mesh.cartcells, cartcells.h) calls a cell whole when all
+**     eight corners are fluid, else cut, with the volume computed here.
 **
 ** 2-D grids (one cell thick between empty patches) need the geometry
 ** flattened first (geometry_flatten at the grid's mid-plane); the cut
@@ -76,10 +78,15 @@ typedef struct CutStats {
 } CutStats;
 
 void cut_opts_default(CutOpts *o);
+/* Keywords of system/cutCellsDict (for -help and checking). */
+extern const DictKey cut_keys[];
+/* Reads the dictionary at path into o, over the defaults: fails with
+   file:line on an unknown keyword or a value out of range. */
+int cut_read_opts(const char *path, CutOpts *o, Err *e);
 
 /* Cuts grid (a block grid: cart extras present, cell i + nx*(j + ny*k)
    is Cartesian cell (i, j, k)) by g into out (need not be initialised).
-   out gets the Cartesian extras, cell_parent and wall_normal (mesh.h).
+   out gets the Cartesian extras, cell_parent and boundary_normal (mesh.h).
    Fails when the grid has no Cartesian extras, a surface's patch name
    clashes with a grid patch, or no cell is left. */
 int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o,

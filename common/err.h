@@ -5,7 +5,8 @@
 ** takes an Err* as its last argument, fills it with a message of the form
 ** "file:line: message" (or "file: message" when there is no line) and
 ** returns a failure value (-1 or NULL).  Only a tool's main decides to
-** print the message and exit (err_die).  This keeps every reader usable
+** print the message and exit: err_die is the application frame's
+** (app/errout.h), above this library.  This keeps every reader usable
 ** from the fuzz harness and from tests that assert on the exact message.
 */
 #ifndef KIESEL_ERR_H
@@ -28,27 +29,5 @@ int err_set(Err *e, const char *file, int line, const char *fmt, ...)
 #endif
     ;
 int err_setv(Err *e, const char *file, int line, const char *fmt, va_list ap);
-
-/* Prints e->msg to stderr (prefixed by the tool name if set via
-   err_progname) and exits with status 1. */
-void err_die(const Err *e)
-#if defined(__GNUC__)
-    __attribute__((noreturn))
-#endif
-    ;
-/* printf-style fatal error: "tool: message" on stderr, exit 1. */
-void err_fatal(const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((noreturn, format(printf, 1, 2)))
-#endif
-    ;
-/* Warning on stderr ("Warning: ..."), never exits. */
-void err_warn(const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 1, 2)))
-#endif
-    ;
-/* Name used as prefix by err_die/err_fatal; set once by args_parse. */
-void err_progname(const char *name);
 
 #endif

@@ -336,7 +336,7 @@ int io_write_atomic(const char *path, const void *data, size_t n, int gzip, Err 
 int io_write_atomic_v(const char *path, const IoPiece *pieces, int npieces, int gzip, Err *e)
 {
     if (strcmp(path, "-") == 0) {
-        fflush(stdout);
+        fflush(NULL); /* what the caller printed goes first */
         if (write_pieces(STDOUT_FILENO, pieces, npieces))
             return err_set(e, "<stdout>", 0, "write error: %s", strerror(errno));
         return 0;

@@ -66,18 +66,22 @@
 ** are joined into one polygon (see "empty faces" below).  Output cells
 ** are numbered in order of their smallest member, so the numbering stays
 ** close to Cartesian order.  cell_parent is the largest member's,
-** wall_normal follows the boundary faces (they keep their order), points
+** boundary_normal follows the boundary faces (they keep their order), points
 ** no face uses any more are dropped (the others keep their order),
-** merge_map records each input cell's output cell.  Everything
+** merge_map records each input cell's output cell, and the cut-cell
+** data contract (cartcells.h) is the input's with the clusters renamed:
+** the member cell_parent names is master, the others slaves.  Everything
 ** is linear in the mesh size except the picks, which walk the faces of
 ** slave clusters and their candidates only.
 */
 #include "merge.h"
+#include "cartcells.h"
 #include "geom.h"
 #include "mem.h"
 #include "quality.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -90,6 +94,53 @@ void merge_opts_default(MergeOpts *o)
     o->criterion = MERGE_NORMAL;
     o->max_iter = 10;
     o->max_skewness = QUALITY_SKEW_HIGH;
+}
+
+const DictKey merge_keys[] = {
+    {"threshold", "0.5", "M_V: cells with V <= M_V x (parent Cartesian volume) are merged, in (0, 1]"},
+    {"criterion", "normal", "merge axis: normal = argmax |n_i|, normalSpacing = argmax |n_i h_i|"},
+    {"maxIter", "10", "rounds of re-merging clusters still below the bound, and of the quality pass (>= 0)"},
+    {"maxSkewness", "4", "quality pass: clusters with a face skewness above this merge further (0 = off, >= 0)"},
+    {NULL, NULL, NULL}};
+
+const char *const merge_criteria[] = {"normal", "normalSpacing", NULL};
+
+static int bad_value(Err *e, const char *path, const Dict *d, const char *key, const char *what)
+{
+    const DictEntry *en = dict_find(d, key);
+    return err_set(e, path, en ? en->line : 0, "%s", what);
+}
+
+/* The ranges: a threshold of 0 merges nothing, above 1 every cell. */
+static int check_opts(const MergeOpts *o, const char *path, const Dict *d, Err *e)
+{
+    char msg[128];
+    if (!(o->threshold > 0 && o->threshold <= 1)) {
+        snprintf(msg, sizeof msg, "threshold must be in (0, 1], found %g", o->threshold);
+        return bad_value(e, path, d, "threshold", msg);
+    }
+    if (o->max_iter < 0) {
+        snprintf(msg, sizeof msg, "maxIter must be >= 0, found %d", o->max_iter);
+        return bad_value(e, path, d, "maxIter", msg);
+    }
+    if (!(o->max_skewness >= 0)) {
+        snprintf(msg, sizeof msg, "maxSkewness must be >= 0, found %g", o->max_skewness);
+        return bad_value(e, path, d, "maxSkewness", msg);
+    }
+    return 0;
+}
+
+int merge_read_opts(const char *path, MergeOpts *o, Err *e)
+{
+    merge_opts_default(o);
+    Dict *d = dict_read(path, e);
+    int rc = !d || dict_check_keys(d, merge_keys, e) ||
+             dict_scalar_or(d, "threshold", o->threshold, &o->threshold, e) ||
+             dict_choice_or(d, "criterion", merge_criteria, o->criterion, &o->criterion, e) ||
+             dict_label_or(d, "maxIter", o->max_iter, &o->max_iter, e) ||
+             dict_scalar_or(d, "maxSkewness", o->max_skewness, &o->max_skewness, e) || check_opts(o, path, d, e);
+    dict_free(d);
+    return rc ? -1 : 0;
 }
 
 const char *merge_reason_name(int reason)
@@ -962,7 +1013,7 @@ static void work_init(Work *w, Mesh *g, const MergeOpts *o)
     w->cc0_ok = MEM_NEW(char, (size_t)nc);
     for (int p = 0; p < m->npatches; p++) {
         const Patch *pa = &m->patches[p];
-        w->empty_patch[p] = !strcmp(pa->type, "empty");
+        w->empty_patch[p] = mesh_patch_is_empty(pa);
         w->skip_patch[p] = w->empty_patch[p] || !strncmp(pa->type, "cyclic", 6);
         /* quality_empty_dirs's rule: the largest component of each empty
            face's area vector is an empty direction */
@@ -1139,7 +1190,7 @@ typedef struct Joined {
 static int is_empty_face(const Mesh *m, int f)
 {
     int p = mesh_face_patch(m, f);
-    return p >= 0 && !strcmp(m->patches[p].type, "empty");
+    return p >= 0 && mesh_patch_is_empty(&m->patches[p]);
 }
 
 static int point_on(const Mesh *m, int pt, int k, double v, double tol)
@@ -1388,14 +1439,11 @@ static void assemble(Work *w, const int *newid, int nout, Mesh *out)
     out->npatches = m->npatches;
     out->patches = MEM_NEW(Patch, (size_t)m->npatches);
     int g = ni;
-    if (m->wall_normal) out->wall_normal = mem_alloc(3 * sizeof(double) * ((size_t)(nf - ni) + 1));
+    if (m->boundary_normal) out->boundary_normal = mem_alloc(3 * sizeof(double) * ((size_t)(nf - ni) + 1));
     for (int p = 0; p < m->npatches; p++) {
         const Patch *pa = &m->patches[p];
         Patch *q = &out->patches[p];
-        q->name = mem_strdup(pa->name);
-        q->type = mem_strdup(pa->type);
-        q->neighbour = pa->neighbour ? mem_strdup(pa->neighbour) : NULL;
-        q->groups = pa->groups ? mem_strdup(pa->groups) : NULL;
+        mesh_patch_copy(pa, q);
         q->start = g;
         for (int f = pa->start; f < pa->start + pa->size; f++) {
             int jf = j.face ? j.face[f - m->ninternal] : -1;
@@ -1403,8 +1451,8 @@ static void assemble(Work *w, const int *newid, int nout, Mesh *out)
             if (jf >= 0) put_face(out, g, j.pts.v + j.off.v[jf], j.off.v[jf + 1] - j.off.v[jf], 0);
             else put_face(out, g, m->face_idx + m->face_off[f], m->face_off[f + 1] - m->face_off[f], 0);
             out->owner[g] = newid[m->owner[f]];
-            if (m->wall_normal)
-                memcpy(out->wall_normal + 3 * (size_t)(g - ni), m->wall_normal + 3 * (size_t)(f - m->ninternal),
+            if (m->boundary_normal)
+                memcpy(out->boundary_normal + 3 * (size_t)(g - ni), m->boundary_normal + 3 * (size_t)(f - m->ninternal),
                        3 * sizeof(double));
             g++;
         }
@@ -1497,6 +1545,22 @@ static void stats_after(Work *w, const int *root, const char *stuck, int nout, M
     }
 }
 
+/* The cut-cell data contract of out (cartcells.h), composed with the
+   input's; an input without one (a cut grid written before it existed)
+   gets one from its cellParent and volumes first, when cellParent names
+   one cell per Cartesian cell. */
+static void merge_cart_cells(const Mesh *in, const double *vol, const int *newid, Mesh *out)
+{
+    CartCells base;
+    const CartCells *cc = &in->cartcells;
+    if (cc->n <= 0) {
+        if (cartcells_build(in, vol, NULL, &base)) return;
+        cc = &base;
+    }
+    cartcells_merge(cc, newid, out, &out->cartcells);
+    if (cc == &base) cartcells_free(&base);
+}
+
 static int check_input(const Mesh *in, const MergeOpts *o, Err *e)
 {
     if (!(o->threshold > 0 && o->threshold <= 1))
@@ -1555,6 +1619,7 @@ int merge_mesh(const Mesh *in, const MergeOpts *o, Mesh *out, MergeStats *st, Er
     mesh_copy_cart(&in->cart, &out->cart);
     out->cell_parent = mem_alloc(sizeof(int) * (size_t)nout);
     for (int C = 0; C < nout; C++) out->cell_parent[C] = in->cell_parent[w.big[root[C]]];
+    merge_cart_cells(in, g.cell_vol, newid, out);
     out->merge_map = newid;
     out->nmerge_old = nc;
     free(root);

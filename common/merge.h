@@ -49,6 +49,7 @@
 #ifndef KIESEL_MERGE_H
 #define KIESEL_MERGE_H
 
+#include "dict.h"
 #include "err.h"
 #include "mesh.h"
 
@@ -84,11 +85,18 @@ typedef struct MergeStats {
 } MergeStats;
 
 void merge_opts_default(MergeOpts *o);
+/* Keywords of system/mergeCellsDict (for -help and checking). */
+extern const DictKey merge_keys[];
+/* Names of the criteria, by MERGE_*: "normal", "normalSpacing". */
+extern const char *const merge_criteria[];
+/* Reads the dictionary at path into o, over the defaults: fails with
+   file:line on an unknown keyword or a value out of range. */
+int merge_read_opts(const char *path, MergeOpts *o, Err *e);
 const char *merge_reason_name(int reason);
 
 /* Merges the small cells of in (cell_parent and cart required) into out
    (need not be initialised).  out->merge_map gets in's cell count
-   entries: the output cell of each input cell.  wall_normal, when
+   entries: the output cell of each input cell.  boundary_normal, when
    present, follows the boundary faces.  out comes without cell faces and
    geometry (mesh_geometry computes them; the statistics come from the
    input).  Fills st (free with merge_stats_free). */

@@ -21,6 +21,7 @@
 ** owner/neighbour lists, so the faces of a cell come in increasing order.
 */
 #include "mesh.h"
+#include "cartcells.h"
 #include "geom.h"
 #include "mem.h"
 
@@ -58,9 +59,10 @@ void mesh_free(Mesh *m)
     free(m->patches);
     for (int k = 0; k < 3; k++) free(m->cart.x[k]);
     free(m->cell_parent);
-    free(m->wall_normal);
+    free(m->boundary_normal);
     free(m->merge_map);
     free(m->cell_seed);
+    cartcells_free(&m->cartcells);
     free_geometry(m);
     free(m->cell_off);
     free(m->cell_faces);
@@ -73,6 +75,11 @@ void mesh_cell_faces(Mesh *m)
 {
     free(m->cell_off);
     free(m->cell_faces);
+    mesh_cell_face_lists(m, &m->cell_off, &m->cell_faces);
+}
+
+void mesh_cell_face_lists(const Mesh *m, int **off_out, int **faces_out)
+{
     int nc = m->ncells;
     int *off = MEM_NEW(int, (size_t)nc + 1);
     for (int f = 0; f < m->nfaces; f++) off[m->owner[f] + 1]++;
@@ -87,8 +94,8 @@ void mesh_cell_faces(Mesh *m)
         if (f < m->ninternal) cf[pos[m->neighbour[f]]++] = f;
     }
     free(pos);
-    m->cell_off = off;
-    m->cell_faces = cf;
+    *off_out = off;
+    *faces_out = cf;
 }
 
 /* ---- geometry ---- */
@@ -140,6 +147,26 @@ int mesh_patch(const Mesh *m, const char *name)
     return -1;
 }
 
+void mesh_patch_copy(const Patch *p, Patch *q)
+{
+    q->name = mem_strdup(p->name);
+    q->type = mem_strdup(p->type);
+    q->neighbour = p->neighbour ? mem_strdup(p->neighbour) : NULL;
+    q->groups = p->groups ? mem_strdup(p->groups) : NULL;
+    q->start = p->start;
+    q->size = p->size;
+}
+
+int mesh_type_is_empty(const char *type)
+{
+    return type && strcmp(type, "empty") == 0;
+}
+
+int mesh_patch_is_empty(const Patch *p)
+{
+    return mesh_type_is_empty(p->type);
+}
+
 int mesh_face_patch(const Mesh *m, int f)
 {
     if (f < m->ninternal || f >= m->nfaces) return -1;
@@ -174,6 +201,13 @@ int mesh_cell_spacing(const Mesh *m, int c, double h[3])
     long ijk[3] = {p % g->n[0], (p / g->n[0]) % g->n[1], p / nxy};
     for (int k = 0; k < 3; k++) h[k] = g->x[k][ijk[k] + 1] - g->x[k][ijk[k]];
     return 0;
+}
+
+const double *mesh_cell_node(const Mesh *m, int c)
+{
+    if (c < 0 || c >= m->ncells) return NULL;
+    if (m->cell_seed) return m->cell_seed + 3 * (size_t)c;
+    return m->cell_centre ? m->cell_centre + 3 * (size_t)c : NULL;
 }
 
 /* ---- 2-D detection ---- */
@@ -212,7 +246,7 @@ int mesh_empty_axis(const Mesh *m)
     int axis = -1, nempty = 0;
     for (int p = 0; p < m->npatches; p++) {
         const Patch *pa = &m->patches[p];
-        if (strcmp(pa->type, "empty") != 0) continue;
+        if (!mesh_patch_is_empty(pa)) continue;
         for (int f = pa->start; f < pa->start + pa->size; f++) {
             if (f < 0 || f >= m->nfaces) return -1;
             double S[3];
@@ -234,7 +268,7 @@ int mesh_empty_axis(const Mesh *m)
     int ok = 1;
     for (int p = 0; p < m->npatches && ok; p++) {
         const Patch *pa = &m->patches[p];
-        if (strcmp(pa->type, "empty") != 0) continue;
+        if (!mesh_patch_is_empty(pa)) continue;
         for (int f = pa->start; f < pa->start + pa->size && ok; f++) {
             int c = m->owner[f];
             if (c < 0 || c >= m->ncells || ++cnt[c] > 2) ok = 0;

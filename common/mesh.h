@@ -25,10 +25,16 @@
 **                   normal of the geometry at the face centre (cutCells,
 **                   voronoiGrid), which slip walls need.
 **   mergeMap        labelList, one per cell of the grid before merging:
-**                   the merged cell it became (mergeCells).
+**                   the merged cell it became (mergeCells); solvers use
+**                   cartesianCells instead, which survives merging twice.
 **   cellSeed        vectorField, one per cell: the Voronoi seed the cell
 **                   belongs to (voronoiGrid), the point the solvers use as
 **                   the cell's node (ICCM^V, spec §2.4).
+**   cartesianCells  dictionary: the cut-cell data contract (cartcells.h):
+**                   for every Cartesian cell its role (outside, whole,
+**                   cut, master, slave), the cell it belongs to and the
+**                   fluid volume of its part; for every cell its list of
+**                   Cartesian parents (cutCells, mergeCells, voronoiGrid).
 ** Stream form ("-" as path, for pipelines): the same files one after the
 ** other, each preceded by a line "@file <name> <nbytes>\n", ended by a line
 ** "@end\n"; see doc/file-formats.md.
@@ -56,6 +62,18 @@ typedef struct CartGrid {
     double *x[3];      /* n[k]+1 point coordinates per axis */
 } CartGrid;
 
+/* The cut-cell data contract (file cartesianCells; roles, building and
+   checking in cartcells.h).  Cartesian cells are numbered i + nx*(j + ny*k)
+   as in cellParent. */
+typedef struct CartCells {
+    int n;             /* Cartesian cells nx*ny*nz, 0 when absent */
+    int *role;         /* n: CART_OUTSIDE, CART_WHOLE, ... (cartcells.h) */
+    int *cell;         /* n: the cell it belongs to, -1 outside */
+    double *vol;       /* n: fluid volume of its part */
+    int *parent_off;   /* ncells+1: cell c's parents are */
+    int *parent;       /* parent[parent_off[c] .. parent_off[c+1]-1], ascending */
+} CartCells;
+
 typedef struct Mesh {
     int npoints, nfaces, ninternal, ncells, npatches;
     double *points;    /* 3*npoints */
@@ -65,14 +83,15 @@ typedef struct Mesh {
     int *neighbour;    /* ninternal */
     Patch *patches;
 
-    /* extras (may be absent: cart.n[0] == 0, cell_parent, wall_normal,
-       merge_map, cell_seed NULL) */
+    /* extras (may be absent: cart.n[0] == 0, cell_parent, boundary_normal,
+       merge_map, cell_seed NULL, cartcells.n == 0) */
     CartGrid cart;
     int *cell_parent;  /* ncells */
-    double *wall_normal;  /* 3*(nfaces - ninternal), or NULL */
+    double *boundary_normal;  /* 3*(nfaces - ninternal), or NULL */
     int *merge_map;    /* nmerge_old entries, or NULL */
     int nmerge_old;
     double *cell_seed;    /* 3*ncells, or NULL */
+    CartCells cartcells;
 
     /* geometry, filled by mesh_geometry */
     double *face_area;    /* 3*nfaces, area vectors Sf */
@@ -112,6 +131,9 @@ int mesh_read_stream(Mesh *m, const char *data, size_t n, const char *name, Err 
 void mesh_geometry(Mesh *m);
 /* Builds cell_off/cell_faces from owner/neighbour. */
 void mesh_cell_faces(Mesh *m);
+/* The same lists into new arrays *off (ncells+1) and *faces, for a mesh
+   that is only read (the caller frees them). */
+void mesh_cell_face_lists(const Mesh *m, int **off, int **faces);
 
 /* Checks the ordering and range invariants listed above; the message
    names the first offending face. */
@@ -123,12 +145,25 @@ int mesh_empty_axis(const Mesh *m);
 
 /* Patch index by name, or -1. */
 int mesh_patch(const Mesh *m, const char *name);
+/* Deep copy of patch p into q (new strings; start and size copied). */
+void mesh_patch_copy(const Patch *p, Patch *q);
+/* Is the patch of OpenFOAM's type empty (the front and back of a 2-D
+   case, which carry no values)?  mesh_type_is_empty for a bare type
+   name; a NULL type is not empty. */
+int mesh_patch_is_empty(const Patch *p);
+int mesh_type_is_empty(const char *type);
 /* Patch index of boundary face f, or -1 for an internal face. */
 int mesh_face_patch(const Mesh *m, int f);
 
 /* Cartesian parent spacing of cell c (h[k] = width along axis k), from
    cart and cell_parent; returns -1 when the cell has no parent. */
 int mesh_cell_spacing(const Mesh *m, int c, double h[3]);
+
+/* The node of cell c, where the solvers keep its unknowns: its Voronoi
+   seed (cell_seed) on a Voronoi grid (ICCM^V, spec §2.4), else its
+   centroid (cell_centre, filled by mesh_geometry; spec §2.5: a merged
+   cluster's unknown lives at its centroid).  NULL when neither is there. */
+const double *mesh_cell_node(const Mesh *m, int c);
 
 /* Copies the Cartesian parent grid a into b (b's arrays are new). */
 void mesh_copy_cart(const CartGrid *a, CartGrid *b);

@@ -38,10 +38,11 @@
 ** it is text either way, and OpenFOAM reads both.  Patches with groups
 ** NULL get OpenFOAM's default inGroups (1(wall), 1(empty), ...), and the
 ** reader turns that default back into NULL.  Extras that the mesh lacks
-** (cartesianGrid, cellParent, boundaryNormal, mergeMap, cellSeed)
-** are removed from the directory, so a stale cellParent from an earlier
+** (cartesianGrid, cellParent, boundaryNormal, mergeMap, cellSeed,
+** cartesianCells: cartcellsio.c) are removed from the directory, so a stale cellParent from an earlier
 ** mesh can never be read with a new one.
 */
+#include "cartcells.h"
 #include "dict.h"
 #include "foam.h"
 #include "io.h"
@@ -57,13 +58,16 @@
 #include <string.h>
 #include <unistd.h>
 
-enum { F_POINTS, F_FACES, F_OWNER, F_NEIGHBOUR, F_BOUNDARY, F_CART, F_PARENT, F_BNORMAL, F_MERGEMAP, F_SEED, NFILES };
+enum { F_POINTS, F_FACES, F_OWNER, F_NEIGHBOUR, F_BOUNDARY, F_CART, F_PARENT, F_BNORMAL, F_MERGEMAP, F_SEED, F_CARTCELLS, NFILES };
+
+/* dictionaries, not bare lists: no blank line after the header */
+#define IS_DICT(w) ((w) == F_CART || (w) == F_CARTCELLS)
 
 #define IS_EXTRA(w) ((w) >= F_CART)
 
 static const char *const file_names[NFILES] = {"points",   "faces",         "owner",     "neighbour",
                                                "boundary", "cartesianGrid", "cellParent",
-                                               "boundaryNormal", "mergeMap", "cellSeed"};
+                                               "boundaryNormal", "mergeMap", "cellSeed", "cartesianCells"};
 
 /* ---- writing ---- */
 
@@ -145,9 +149,10 @@ static int has_file(const Mesh *m, int which)
 {
     if (which == F_CART) return m->cart.n[0] > 0;
     if (which == F_PARENT) return m->cell_parent != NULL;
-    if (which == F_BNORMAL) return m->wall_normal != NULL;
+    if (which == F_BNORMAL) return m->boundary_normal != NULL;
     if (which == F_MERGEMAP) return m->merge_map != NULL;
     if (which == F_SEED) return m->cell_seed != NULL;
+    if (which == F_CARTCELLS) return m->cartcells.n > 0;
     return 1;
 }
 
@@ -167,6 +172,7 @@ static size_t file_size_hint(const Mesh *m, int which, int binary)
     case F_BNORMAL: sz = (nf - ni) * (binary ? 24 : 72); break;
     case F_MERGEMAP: sz = (size_t)m->nmerge_old * (binary ? 4 : 10); break;
     case F_SEED: sz = (size_t)m->ncells * (binary ? 24 : 72); break;
+    case F_CARTCELLS: sz = cartcells_size_hint(m, binary); break;
     default: break;
     }
     return sz + 4096;
@@ -221,7 +227,7 @@ static void mesh_file(const Mesh *m, int which, int binary, Buf *b, Holes *h)
 {
     static const char *const cls[NFILES] = {"vectorField", "faceList",   "labelList", "labelList",
                                             "polyBoundaryMesh", "dictionary", "labelList",
-                                            "vectorField", "labelList", "vectorField"};
+                                            "vectorField", "labelList", "vectorField", "dictionary"};
     char note[160];
     snprintf(note, sizeof note, "nPoints:%d  nCells:%d  nFaces:%d  nInternalFaces:%d", m->npoints,
              m->ncells, m->nfaces, m->ninternal);
@@ -235,7 +241,7 @@ static void mesh_file(const Mesh *m, int which, int binary, Buf *b, Holes *h)
     buf_reserve(b, h ? 4096 : file_size_hint(m, which, bin));
     foam_header(b, c, "constant/polyMesh", file_names[which], bin,
                 which == F_OWNER || which == F_NEIGHBOUR ? note : NULL);
-    if (which != F_CART && which != F_BOUNDARY) buf_putc(b, '\n');
+    if (!IS_DICT(which) && which != F_BOUNDARY) buf_putc(b, '\n');
     switch (which) {
     case F_POINTS:
         if (h)
@@ -262,9 +268,9 @@ static void mesh_file(const Mesh *m, int which, int binary, Buf *b, Holes *h)
     case F_PARENT: put_labels(b, h, m->cell_parent, (size_t)m->ncells, bin); break;
     case F_BNORMAL:
         if (h)
-            put_hole(b, h, m->wall_normal, (size_t)(m->nfaces - m->ninternal), 3 * sizeof(double));
+            put_hole(b, h, m->boundary_normal, (size_t)(m->nfaces - m->ninternal), 3 * sizeof(double));
         else
-            foam_put_scalars(b, m->wall_normal, (size_t)(m->nfaces - m->ninternal), 3, bin, 0);
+            foam_put_scalars(b, m->boundary_normal, (size_t)(m->nfaces - m->ninternal), 3, bin, 0);
         break;
     case F_MERGEMAP: put_labels(b, h, m->merge_map, (size_t)m->nmerge_old, bin); break;
     case F_SEED:
@@ -273,9 +279,10 @@ static void mesh_file(const Mesh *m, int which, int binary, Buf *b, Holes *h)
         else
             foam_put_scalars(b, m->cell_seed, (size_t)m->ncells, 3, bin, 0);
         break;
+    case F_CARTCELLS: cartcells_put(b, m, bin); break;
     }
     /* OpenFOAM leaves two blank lines after a list, one after boundary */
-    if (which != F_BOUNDARY && which != F_CART) buf_putc(b, '\n');
+    if (which != F_BOUNDARY && !IS_DICT(which)) buf_putc(b, '\n');
     foam_footer(b);
 }
 
@@ -321,6 +328,10 @@ static int check_writable(const Mesh *m, Err *e)
     for (int k = 0; k < 3 && m->cart.n[0] > 0; k++)
         if (m->cart.n[k] <= 0 || !m->cart.x[k])
             return err_set(e, NULL, 0, "mesh: cartesian grid has %d cells along axis %d", m->cart.n[k], k);
+    if (m->cartcells.n > 0 && (m->cart.n[0] <= 0 || (long)m->cart.n[0] * m->cart.n[1] * m->cart.n[2] != m->cartcells.n ||
+                               !m->cartcells.parent_off))
+        return err_set(e, NULL, 0, "mesh: %d Cartesian cells in cartesianCells do not fit the cartesian grid",
+                       m->cartcells.n);
     return 0;
 }
 
@@ -857,12 +868,12 @@ static int read_bnormal(Mesh *m, const Dict *d, const char *name, Err *e)
     size_t nv, n;
     if (body(d, name, &v, &nv, e)) return -1;
     if (nv != 1) return err_set(e, name, list_line(v), "expected one list of vectors, found %zu values", nv);
-    if (nonfinite_item(v[0], name, "normal", e) || dict_node_take_scalars(v[0], 3, &m->wall_normal, &n, e))
+    if (nonfinite_item(v[0], name, "normal", e) || dict_node_take_scalars(v[0], 3, &m->boundary_normal, &n, e))
         return -1;
     if (n != (size_t)(m->nfaces - m->ninternal))
         return err_set(e, name, list_line(v), "%zu normals for %d boundary faces", n, m->nfaces - m->ninternal);
     for (size_t i = 0; i < 3 * n; i++)
-        if (!isfinite(m->wall_normal[i])) return err_set(e, name, list_line(v), "normal %zu is not finite", i / 3);
+        if (!isfinite(m->boundary_normal[i])) return err_set(e, name, list_line(v), "normal %zu is not finite", i / 3);
     return 0;
 }
 
@@ -898,7 +909,7 @@ static int check_class(const Dict *d, int which, const char *name, Err *e)
 {
     static const char *const want[NFILES] = {"vectorField", "faceList", "labelList", "labelList",
                                              "polyBoundaryMesh", "dictionary", "labelList",
-                                             "vectorField", "labelList", "vectorField"};
+                                             "vectorField", "labelList", "vectorField", "dictionary"};
     const DictEntry *h = dict_find(d, "FoamFile");
     if (!h || !h->dict) return 0;
     const DictEntry *ce = dict_find(h->dict, "class");
@@ -931,6 +942,7 @@ static int build_mesh(Mesh *m, Part *parts, Err *e)
     if (!rc && d[F_BNORMAL]) rc = read_bnormal(m, d[F_BNORMAL], parts[F_BNORMAL].name, e);
     if (!rc && d[F_MERGEMAP]) rc = read_mergemap(m, d[F_MERGEMAP], parts[F_MERGEMAP].name, e);
     if (!rc && d[F_SEED]) rc = read_seed(m, d[F_SEED], parts[F_SEED].name, e);
+    if (!rc && d[F_CARTCELLS]) rc = cartcells_read(m, d[F_CARTCELLS], parts[F_CARTCELLS].name, e);
     for (int w = 0; w < NFILES; w++)
         if (d[w]) dict_free(d[w]);
     return rc;

@@ -18,6 +18,7 @@
 ** names only one of them).
 */
 #include "quality.h"
+#include "cartcells.h"
 #include "geom.h"
 #include "mem.h"
 
@@ -225,7 +226,7 @@ void quality_empty_dirs(const Mesh *m, int empty[3])
 {
     empty[0] = empty[1] = empty[2] = 0;
     for (int p = 0; p < m->npatches; p++) {
-        if (strcmp(m->patches[p].type, "empty")) continue;
+        if (!mesh_patch_is_empty(&m->patches[p])) continue;
         for (int f = m->patches[p].start; f < m->patches[p].start + m->patches[p].size; f++) {
             const double *S = m->face_area + 3 * (size_t)f;
             int k = fabs(S[0]) >= fabs(S[1]) ? 0 : 1;
@@ -477,6 +478,7 @@ int quality_check(const Mesh *m, const Quality *q, int *nfailed, Err *e)
     Mesh topo = *m;
     topo.face_area = topo.cell_vol = NULL;
     if (mesh_check(&topo, &tmp) && nf++ == 0) first = tmp;
+    if (m->cartcells.n > 0 && mesh_check_cartesian(m, CARTCELLS_TOL, &tmp) && nf++ == 0) first = tmp;
     if (nfailed) *nfailed = nf;
     if (!nf) return 0;
     if (e) *e = first;
@@ -501,6 +503,20 @@ static void report_volumes(const Quality *q, Buf *out)
     buf_printf(out, "    Cut cells: %d\n    Merged cells: %d\n", q->ncut, q->nmerged);
 }
 
+/* The roles of the Cartesian cells (cartesianCells), when present; the
+   check itself is quality_check's (mesh_check_cartesian). */
+static void report_cartesian(const Mesh *m, Buf *out)
+{
+    const CartCells *cc = &m->cartcells;
+    if (cc->n <= 0) return;
+    int count[CART_NROLES] = {0};
+    for (int K = 0; K < cc->n; K++)
+        if (cc->role[K] >= 0 && cc->role[K] < CART_NROLES) count[cc->role[K]]++;
+    buf_printf(out, "    Cartesian cells: %d (", cc->n);
+    for (int r = 0; r < CART_NROLES; r++) buf_printf(out, "%s%s %d", r ? ", " : "", cartcells_role_name(r), count[r]);
+    buf_printf(out, ")\n");
+}
+
 void quality_report(const Mesh *m, const Quality *q, Buf *out)
 {
     buf_printf(out, "Grid stats\n    points:           %d\n    faces:            %d\n", m->npoints,
@@ -516,6 +532,7 @@ void quality_report(const Mesh *m, const Quality *q, Buf *out)
     buf_printf(out, "    Grid is %s (empty directions: %d %d %d)\n", dims_name(q), q->empty[0],
                q->empty[1], q->empty[2]);
     report_volumes(q, out);
+    report_cartesian(m, out);
     buf_printf(out, "    Max closedness |sum S|/surface = %.3g (open cells: %d)\n", q->open_max, q->nopen);
     buf_printf(out, "    Wrongly oriented faces: %d\n    Non-positive volumes: %d\n", q->norient,
                q->nnegvol);

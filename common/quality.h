@@ -35,8 +35,9 @@
 ** A grid is broken (quality_check fails) when a cell is not closed
 ** (|sum of outward S| > 1e-12 of the cell's surface), a face normal does
 ** not point from its owner's centre to the neighbour's (or out of a
-** boundary cell), a cell volume is not positive, or the polyMesh ordering
-** invariants (mesh_check) fail.  Non-orthogonality > 70 deg, skewness > 4
+** boundary cell), a cell volume is not positive, the polyMesh ordering
+** invariants (mesh_check) fail, or the cut-cell data contract does
+** (cartesianCells, mesh_check_cartesian).  Non-orthogonality > 70 deg, skewness > 4
 ** and aspect ratio > 1000 are only counted (cut cells can have them).
 */
 #ifndef KIESEL_QUALITY_H

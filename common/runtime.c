@@ -9,8 +9,19 @@
 ** error is reported once per edit rather than at every time step.
 ** Keywords and defaults are OpenFOAM's (Time::readDict); unknown keywords
 ** are errors with a suggestion, because a misspelt endTime silently
-** falling back to a default is the worst kind of input error.  As in
-** OpenFOAM v1912, writeCompression is switched off for binary files.
+** falling back to a default is the worst kind of input error.
+**
+** This is the one controlDict reader of every tool (through case_open,
+** common/case.h).  A solver needs endTime and deltaT; the grid and
+** set-up tools read only the output format, so for them the two take
+** defaults, as OpenFOAM's utilities run on a controlDict without them.
+** writeFormat is ascii | binary; writeCompression is any of OpenFOAM's
+** Switch words (on/off, yes/no, true/false, y/n, t/f, none) or
+** compressed/uncompressed (IOstreamOption::compressionEnum).  As in
+** OpenFOAM v1912 ("Disabled binary format compression
+** (inefficient/ineffective)"), writeCompression is switched off for
+** binary files: grids and fields alike (case_mesh_format,
+** case_field_format).
 **
 ** Time names are OpenFOAM's Time::timeName: the C++ stream formats
 ** general/fixed/scientific with timePrecision digits are printf's %g/%f/%e.
@@ -101,7 +112,14 @@ static int read_compression(const Dict *d, int *out, Err *e)
     return dict_switch_or(d, "writeCompression", 0, out, e);
 }
 
-static int parse_control(Control *c, const Dict *d, Err *e)
+/* endTime and deltaT: required when need_time, else defaults 0 and 1. */
+static int read_times(Control *c, const Dict *d, int need_time, Err *e)
+{
+    if (need_time) return dict_scalar(d, "endTime", &c->endTime, e) || dict_scalar(d, "deltaT", &c->deltaT, e);
+    return dict_scalar_or(d, "endTime", 0, &c->endTime, e) || dict_scalar_or(d, "deltaT", 1, &c->deltaT, e);
+}
+
+static int parse_control(Control *c, const Dict *d, int need_time, Err *e)
 {
     static const char *const start_names[] = {"firstTime", "startTime", "latestTime", NULL};
     static const int start_vals[] = {START_FIRST, START_START, START_LATEST};
@@ -120,7 +138,7 @@ static int parse_control(Control *c, const Dict *d, Err *e)
     if (read_choice(d, "startFrom", start_names, start_vals, 1, &c->startFrom, e) ||
         dict_scalar_or(d, "startTime", 0, &c->startTime, e) ||
         read_choice(d, "stopAt", stop_names, stop_vals, 0, &c->stopAt, e) ||
-        dict_scalar(d, "endTime", &c->endTime, e) || dict_scalar(d, "deltaT", &c->deltaT, e) ||
+        read_times(c, d, need_time, e) ||
         read_choice(d, "writeControl", wc_names, wc_vals, 0, &c->writeControl, e) ||
         dict_scalar_or(d, "writeInterval", 1, &c->writeInterval, e) ||
         dict_label_or(d, "purgeWrite", 0, &c->purgeWrite, e) ||
@@ -143,36 +161,41 @@ static int parse_control(Control *c, const Dict *d, Err *e)
     if (c->writePrecision > 17) c->writePrecision = 17;
     if (c->timePrecision > 17) c->timePrecision = 17;
     if (c->writeBinary) c->writeCompression = 0;
+    c->need_time = need_time;
     return 0;
 }
 
 /* Reads and parses path into c (path not set); fills mtime. */
-static int load_control(Control *c, const char *path, Err *e)
+static int load_control(Control *c, const char *path, int need_time, Err *e)
 {
     struct stat st;
     if (stat(path, &st)) return err_set(e, path, 0, "cannot read controlDict: %s", strerror(errno));
     Dict *d = dict_read(path, e);
     if (!d) return -1;
-    int rc = parse_control(c, d, e);
+    int rc = parse_control(c, d, need_time, e);
     dict_free(d);
     c->mtime = st.st_mtim.tv_sec;
     c->mtime_ns = st.st_mtim.tv_nsec;
     return rc;
 }
 
-int runtime_read_control(Control *c, const char *case_dir, Err *e)
+int runtime_load_control(Control *c, const char *path, int need_time, Err *e)
 {
     memset(c, 0, sizeof *c);
-    char *path = io_join(case_dir, "system/controlDict");
     Control t;
     memset(&t, 0, sizeof t);
-    if (load_control(&t, path, e)) {
-        free(path);
-        return -1;
-    }
+    if (load_control(&t, path, need_time, e)) return -1;
     *c = t;
-    c->path = path;
+    c->path = mem_strdup(path);
     return 0;
+}
+
+int runtime_read_control(Control *c, const char *case_dir, Err *e)
+{
+    char *path = io_join(case_dir, "system/controlDict");
+    int rc = runtime_load_control(c, path, 1, e);
+    free(path);
+    return rc;
 }
 
 int runtime_reread(Control *c, Err *e)
@@ -186,7 +209,7 @@ int runtime_reread(Control *c, Err *e)
     c->mtime_ns = st.st_mtim.tv_nsec;
     Control t;
     memset(&t, 0, sizeof t);
-    if (load_control(&t, c->path, e)) return -1;
+    if (load_control(&t, c->path, c->need_time, e)) return -1;
     t.path = c->path;
     *c = t;
     return 1;
@@ -526,14 +549,4 @@ void runtime_free_sel(TimeSel *s)
     runtime_free_times(s->all, s->nall);
     free(s->sel);
     memset(s, 0, sizeof *s);
-}
-
-int runtime_read_control_opt(Control *c, const char *case_dir, Err *e)
-{
-    memset(c, 0, sizeof *c);
-    char *path = io_join(case_dir, "system/controlDict");
-    int have = io_exists(path);
-    free(path);
-    if (!have) return 0;
-    return runtime_read_control(c, case_dir, e) ? -1 : 1;
 }

@@ -31,13 +31,14 @@ typedef struct Control {
     double writeInterval;
     int purgeWrite;        /* keep only the last N time dirs (0 = all) */
     int writeBinary;       /* writeFormat binary */
-    int writeCompression;  /* on/off */
+    int writeCompression;  /* gzip; always 0 with writeBinary (OpenFOAM v1912) */
     int writePrecision;    /* default 6 */
     int timeFormat;        /* TIMEFMT_* */
     int timePrecision;     /* default 6 */
     int runTimeModifiable;
     int adjustTimeStep;
     double maxCo, maxDeltaT;
+    int need_time;         /* endTime and deltaT were required (re-read alike) */
     time_t mtime;          /* of controlDict when read */
     long mtime_ns;         /* nanoseconds of that mtime (edits within a second) */
 } Control;
@@ -45,7 +46,12 @@ typedef struct Control {
 /* Keywords of controlDict with defaults, for -help and checking. */
 extern const DictKey runtime_control_keys[];
 
-/* Reads <case>/system/controlDict. */
+/* The one controlDict reader (see runtime.c): reads path into c.  With
+   need_time, endTime and deltaT are required (a solver); without, they
+   default to 0 and 1 (tools that read only the output format).  Every
+   other keyword is read and checked the same either way. */
+int runtime_load_control(Control *c, const char *path, int need_time, Err *e);
+/* runtime_load_control of <case>/system/controlDict with need_time. */
 int runtime_read_control(Control *c, const char *case_dir, Err *e);
 /* Re-reads the file when runTimeModifiable is on and its mtime changed;
    returns 1 when re-read, 0 when unchanged, -1 on error (the old values
@@ -106,9 +112,5 @@ int runtime_pick_times(TimeSel *s, const char *case_dir, const char *spec, int l
 /* The i-th selected time. */
 const TimeDir *runtime_sel_time(const TimeSel *s, int i);
 void runtime_free_sel(TimeSel *s);
-
-/* Reads <case>/system/controlDict when it exists: returns 1 when read, 0
-   when absent (c zeroed), -1 on error. */
-int runtime_read_control_opt(Control *c, const char *case_dir, Err *e);
 
 #endif

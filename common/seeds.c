@@ -60,6 +60,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -328,6 +329,48 @@ void seeds_opts_default(SeedOpts *o)
     o->layers = 0;
     o->spacing = 1;
     o->min_spacing = 0.5;
+}
+
+const DictKey seeds_keys[] = {
+    {"layers", "0", "boundary layers b: interior seeds at depths (2i+1) h/2, i = 0..b (0..1000)"},
+    {"spacing", "1", "boundary seed spacing as a multiple of the grid spacing h, in (0, 4]"},
+    {"minSpacing", "0.5", "minimum seed spacing a as a multiple of h, in [0, spacing]: every cell's volume is "
+                          "at least pi a^3/6 (2-D: pi a^2/4 per unit thickness)"},
+    {NULL, NULL, NULL}};
+
+static int bad_value(Err *e, const char *path, const Dict *d, const char *key, const char *what)
+{
+    const DictEntry *en = dict_find(d, key);
+    return err_set(e, path, en ? en->line : 0, "%s", what);
+}
+
+static int check_dict_opts(const SeedOpts *o, const char *path, const Dict *d, Err *e)
+{
+    char msg[160];
+    if (!(o->layers >= 0 && o->layers <= 1000)) {
+        snprintf(msg, sizeof msg, "layers must be in 0..1000, found %d", o->layers);
+        return bad_value(e, path, d, "layers", msg);
+    }
+    if (!(o->spacing > 0 && o->spacing <= 4)) {
+        snprintf(msg, sizeof msg, "spacing must be in (0, 4], found %g", o->spacing);
+        return bad_value(e, path, d, "spacing", msg);
+    }
+    if (!(o->min_spacing >= 0 && o->min_spacing <= o->spacing)) {
+        snprintf(msg, sizeof msg, "minSpacing must be in [0, spacing = %g], found %g", o->spacing, o->min_spacing);
+        return bad_value(e, path, d, "minSpacing", msg);
+    }
+    return 0;
+}
+
+int seeds_read_opts(const char *path, SeedOpts *o, Err *e)
+{
+    seeds_opts_default(o);
+    Dict *d = dict_read(path, e);
+    int rc = !d || dict_check_keys(d, seeds_keys, e) || dict_label_or(d, "layers", o->layers, &o->layers, e) ||
+             dict_scalar_or(d, "spacing", o->spacing, &o->spacing, e) ||
+             dict_scalar_or(d, "minSpacing", o->min_spacing, &o->min_spacing, e) || check_dict_opts(o, path, d, e);
+    dict_free(d);
+    return rc ? -1 : 0;
 }
 
 void seeds_free(Seeds *s)

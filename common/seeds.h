@@ -50,6 +50,11 @@ typedef struct Seeds {
 enum { SEED_CARTESIAN, SEED_BOUNDARY };
 
 void seeds_opts_default(SeedOpts *o);
+/* Keywords of system/voronoiGridDict (for -help and checking). */
+extern const DictKey seeds_keys[];
+/* Reads the dictionary at path into o, over the defaults: fails with
+   file:line on an unknown keyword or a value out of range. */
+int seeds_read_opts(const char *path, SeedOpts *o, Err *e);
 /* grid: a block grid (cart extras); g may have no surfaces' worth of
    fluid everywhere: without surfaces the seeds are the cell centres. */
 int seeds_make(const Mesh *grid, const Geometry *g, const SeedOpts *o, Seeds *s, Err *e);

@@ -1,8 +1,10 @@
 /*
 ** vgrid.c: the boundary-conforming Voronoi grid (vgrid.h): seeds, cells,
-** patches, cell seeds and boundary normals.
+** patches, cell seeds, boundary normals and the cut-cell data contract
+** (cartcells.h: each cell's parent is the Cartesian cell holding its seed).
 */
 #include "vgrid.h"
+#include "cartcells.h"
 #include "geom.h"
 #include "mem.h"
 #include "voronoi.h"
@@ -137,11 +139,11 @@ static void boundary_normals(Mesh *m, const Geometry *g, int nbox, const int sid
 {
     double tol = side_tol(lo, hi);
     int nb = m->nfaces - m->ninternal;
-    m->wall_normal = mem_alloc(sizeof(double) * 3 * (size_t)(nb > 0 ? nb : 1));
+    m->boundary_normal = mem_alloc(sizeof(double) * 3 * (size_t)(nb > 0 ? nb : 1));
     for (int p = 0; p < m->npatches; p++) {
         const Patch *P = &m->patches[p];
         for (int f = P->start; f < P->start + P->size; f++) {
-            double *n = m->wall_normal + 3 * (size_t)(f - m->ninternal);
+            double *n = m->boundary_normal + 3 * (size_t)(f - m->ninternal);
             if (p >= nbox) {
                 surface_normal(m, g, p - nbox, f, n);
                 continue;
@@ -159,11 +161,11 @@ void vgrid_normals(const Mesh *m, int first_surface_patch, double tol, VGridNorm
     memset(r, 0, sizeof *r);
     r->max = -1;
     r->face = -1;
-    if (!m->wall_normal) return;
+    if (!m->boundary_normal) return;
     double total = 0;
     for (int p = first_surface_patch; p < m->npatches; p++)
         for (int f = m->patches[p].start; f < m->patches[p].start + m->patches[p].size; f++) {
-            const double *n = m->wall_normal + 3 * (size_t)(f - m->ninternal);
+            const double *n = m->boundary_normal + 3 * (size_t)(f - m->ninternal);
             double S[3], c[3];
             face_geom(m, f, S, c);
             double area = sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
@@ -182,6 +184,20 @@ void vgrid_normals(const Mesh *m, int first_surface_patch, double tol, VGridNorm
             }
         }
     if (total > 0) r->area_off /= total;
+}
+
+/* The parent grid and the cut-cell data contract of a Voronoi grid
+   (cartcells.h: each cell's parent holds its seed); needs the volumes,
+   so the geometry is filled here. */
+static void voronoi_cart_cells(Mesh *out, const CartGrid *cg, const Seeds *s, const int *seed_of)
+{
+    mesh_copy_cart(cg, &out->cart);
+    mesh_cell_faces(out);
+    mesh_geometry(out);
+    unsigned char *centre = mem_alloc((size_t)out->ncells + 1);
+    for (int c = 0; c < out->ncells; c++) centre[c] = s->kind[seed_of[c]] == SEED_CARTESIAN;
+    cartcells_voronoi(out, centre, &out->cartcells);
+    free(centre);
 }
 
 static void count_seeds(const Seeds *s, VGridStats *st)
@@ -263,6 +279,7 @@ int vgrid_mesh(const Mesh *grid0, const Geometry *g0, const SeedOpts *o, Mesh *o
         out->cell_seed = mem_alloc(sizeof(double) * 3 * (size_t)out->ncells);
         for (int c = 0; c < out->ncells; c++) memcpy(out->cell_seed + 3 * c, s.x + 3 * seed_of[c], 3 * sizeof(double));
         boundary_normals(out, &g, nbox, side_patch, lo, hi);
+        voronoi_cart_cells(out, cg, &s, seed_of);
         fill_stats(st, &vs, out, &g, o, cg, flat, nbox);
     }
     free(seed_of);

@@ -5,8 +5,9 @@
 **
 **   seeds (seeds.h) -> bounded Voronoi cells (voronoi.h) -> polyMesh with
 **   the block grid's side patches, one patch per surface of the geometry,
-**   each cell's seed (Mesh.cell_seed) and exact boundary normals
-**   (Mesh.wall_normal).
+**   each cell's seed (Mesh.cell_seed), exact boundary normals
+**   (Mesh.boundary_normal), the block grid's cartesianGrid and the
+**   cut-cell data contract (Mesh.cartcells, cartcells.h).
 **
 ** Patches: the block grid's patches first, in its order (each side of the
 ** box must lie in one patch, as blockGrid makes them), then one per
@@ -46,12 +47,14 @@ typedef struct VGridStats {
 
 /* Builds the Voronoi grid of `grid` (a block grid with its cartesianGrid
    extra) and g (NULL or no surfaces: the cell centres only) into out.
-   out's geometry arrays are not filled (mesh_geometry when needed): the
-   volumes in st come from the cells as they are built. */
+   out gets the block grid's cartesianGrid and the cut-cell data contract
+   (cartcells.h: each cell's parent holds its seed), whose volumes need
+   out's geometry, which is therefore filled; the volumes in st come from
+   the cells as they are built. */
 int vgrid_mesh(const Mesh *grid, const Geometry *g, const SeedOpts *o, Mesh *out, VGridStats *st, Err *e);
 
 /* Boundary normals against the faces: the angle between each surface
-   face's area vector and its exact normal (Mesh.wall_normal). */
+   face's area vector and its exact normal (Mesh.boundary_normal). */
 typedef struct VGridNormals {
     int nfaces;             /* surface faces */
     double max;             /* largest angle (radians), -1 without faces */

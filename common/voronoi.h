@@ -61,7 +61,7 @@ typedef struct VoronoiStats {
 
 /* Builds the grid into out (need not be initialised).  Cell c of out is
    the c-th kept seed in seed order; out->cell_parent is NULL (no
-   Cartesian parents), out->wall_normal NULL (the caller sets exact
+   Cartesian parents), out->boundary_normal NULL (the caller sets exact
    normals).  seed_of, when not NULL, gets ncells entries: the seed of each
    cell. */
 int voronoi_mesh(const VoronoiInput *in, Mesh *out, int *seed_of, VoronoiStats *st, Err *e);

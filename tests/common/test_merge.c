@@ -197,9 +197,9 @@ static void cut2(Mesh *m, const Cut2 *g)
         printf("cut2: %s\n", e.msg);
         exit(1);
     }
-    m->wall_normal = mem_alloc(sizeof(double) * 3 * (size_t)(m->nfaces - m->ninternal));
+    m->boundary_normal = mem_alloc(sizeof(double) * 3 * (size_t)(m->nfaces - m->ninternal));
     for (int f = 0; f < nadd; f++)
-        if (fmap[f] >= m->ninternal) memcpy(m->wall_normal + 3 * (fmap[f] - m->ninternal), wn + 3 * f, 3 * sizeof(double));
+        if (fmap[f] >= m->ninternal) memcpy(m->boundary_normal + 3 * (fmap[f] - m->ninternal), wn + 3 * f, 3 * sizeof(double));
     m->cart.n[0] = g->nx;
     m->cart.n[1] = g->ny;
     m->cart.n[2] = 1;
@@ -335,9 +335,9 @@ static void cut3(Mesh *m, const Cut3 *g)
         printf("cut3: %s\n", e.msg);
         exit(1);
     }
-    m->wall_normal = mem_alloc(sizeof(double) * 3 * (size_t)(m->nfaces - m->ninternal));
+    m->boundary_normal = mem_alloc(sizeof(double) * 3 * (size_t)(m->nfaces - m->ninternal));
     for (int f = 0; f < nadd; f++)
-        if (fmap[f] >= m->ninternal) memcpy(m->wall_normal + 3 * (fmap[f] - m->ninternal), wn + 3 * f, 3 * sizeof(double));
+        if (fmap[f] >= m->ninternal) memcpy(m->boundary_normal + 3 * (fmap[f] - m->ninternal), wn + 3 * f, 3 * sizeof(double));
     for (int k = 0; k < 3; k++) {
         m->cart.n[k] = g->n[k];
         m->cart.x[k] = mem_alloc(sizeof(double) * (size_t)(g->n[k] + 1));
@@ -402,7 +402,7 @@ static void check_merged(const Mesh *in, Mesh *out, const MergeStats *st, double
     /* wall normals followed their faces: unit face normals, body exact */
     int body = mesh_patch(out, "body");
     for (int f = out->ninternal; f < out->nfaces; f++) {
-        const double *S = out->face_area + 3 * f, *n = out->wall_normal + 3 * (f - out->ninternal);
+        const double *S = out->face_area + 3 * f, *n = out->boundary_normal + 3 * (f - out->ninternal);
         double a = geom_norm(S);
         for (int k = 0; k < 3; k++) NEAR(n[k], S[k] / a, mesh_face_patch(out, f) == body ? 1e-12 : 1e-15);
     }

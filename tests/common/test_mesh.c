@@ -162,8 +162,8 @@ static void add_extras(Mesh *m)
     m->cell_parent = MEM_NEW(int, m->ncells);
     for (int c = 0; c < m->ncells; c++) m->cell_parent[c] = c == 5 ? -1 : c;
     int nb = m->nfaces - m->ninternal;
-    m->wall_normal = MEM_NEW(double, 3 * nb);
-    for (int i = 0; i < 3 * nb; i++) m->wall_normal[i] = sin(0.37 * i + 0.1) / 3;
+    m->boundary_normal = MEM_NEW(double, 3 * nb);
+    for (int i = 0; i < 3 * nb; i++) m->boundary_normal[i] = sin(0.37 * i + 0.1) / 3;
     m->nmerge_old = m->ncells + 3;
     m->merge_map = MEM_NEW(int, m->nmerge_old);
     for (int i = 0; i < m->nmerge_old; i++) m->merge_map[i] = i % m->ncells;
@@ -208,8 +208,8 @@ static const char *mesh_diff(const Mesh *a, const Mesh *b)
     if (!why[0] && a->cell_parent && memcmp(a->cell_parent, b->cell_parent, sizeof(int) * (size_t)a->ncells))
         snprintf(why, sizeof why, "cellParent differs");
     int nb = a->nfaces - a->ninternal;
-    if (!why[0] && (!a->wall_normal) != (!b->wall_normal)) snprintf(why, sizeof why, "boundaryNormal presence differs");
-    if (!why[0] && a->wall_normal && memcmp(a->wall_normal, b->wall_normal, sizeof(double) * 3 * (size_t)nb))
+    if (!why[0] && (!a->boundary_normal) != (!b->boundary_normal)) snprintf(why, sizeof why, "boundaryNormal presence differs");
+    if (!why[0] && a->boundary_normal && memcmp(a->boundary_normal, b->boundary_normal, sizeof(double) * 3 * (size_t)nb))
         snprintf(why, sizeof why, "boundaryNormal differs");
     if (!why[0] && (a->nmerge_old != b->nmerge_old || (!a->merge_map) != (!b->merge_map)))
         snprintf(why, sizeof why, "mergeMap size differs");
@@ -384,15 +384,15 @@ TEST(stale_extras_removed)
         m.cart.x[k] = NULL;
         m.cart.n[k] = 0;
     }
-    free(m.wall_normal);
+    free(m.boundary_normal);
     free(m.merge_map);
-    m.wall_normal = NULL;
+    m.boundary_normal = NULL;
     m.merge_map = NULL;
     m.nmerge_old = 0;
     EXPECT(mesh_write(&m, dir, &asc, &e) == 0, "%s", e.msg);
     mesh_init(&r);
     EXPECT(mesh_read(&r, dir, &e) == 0, "%s", e.msg);
-    EXPECT(!r.cell_parent && r.cart.n[0] == 0 && !r.wall_normal && !r.merge_map, "stale extras were read back");
+    EXPECT(!r.cell_parent && r.cart.n[0] == 0 && !r.boundary_normal && !r.merge_map, "stale extras were read back");
     free(dir);
     mesh_free(&m);
     mesh_free(&r);

@@ -438,7 +438,7 @@ TEST(boundary_normals)
         /* box sides: the wall normal is the face's own unit normal */
         double worst = 0;
         for (int g = m.ninternal; g < m.patches[nbox].start; g++) {
-            const double *S = m.face_area + 3 * g, *n = m.wall_normal + 3 * (g - m.ninternal);
+            const double *S = m.face_area + 3 * g, *n = m.boundary_normal + 3 * (g - m.ninternal);
             worst = fmax(worst, 1 - dot(S, n) / norm(S));
         }
         EXPECT(worst <= 1e-14, "case %zu: box side normal off by %g", k, worst);

@@ -13,8 +13,7 @@
 #include "block.h"
 #include "dict.h"
 #include "err.h"
-#include "gridio.h"
-#include "mem.h"
+#include "gridtool.h"
 #include "mesh.h"
 
 #include <stdio.h>
@@ -35,11 +34,10 @@ int main(int argc, char **argv)
 {
     Args a;
     Err e;
-    args_parse(argc, argv, &tool, &a);
-    if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
-    GridIO io;
-    if (gridio_args(&a, &tool, 0, &io, &e)) err_die(&e);
-    char *dict_path = a.dict ? mem_strdup(a.dict) : args_case_path(&a, "system/blockGridDict");
+    Case cs;
+    GridTool io;
+    gridtool_start(argc, argv, &tool, 0, &a, &cs, &io);
+    char *dict_path = args_dict_path(&a, &cs, "system/blockGridDict", 0);
 
     fprintf(a.info, "Creating block grid from \"%s\"\n\n", dict_path);
     Dict *d = dict_read(dict_path, &e);
@@ -53,18 +51,16 @@ int main(int argc, char **argv)
     double dt = args_wall(&a) - t0;
     fprintf(a.info, "Built %d cells in %.3f s (%.3g cells/s)\n\n", m.ncells, dt,
             dt > 0 ? m.ncells / dt : 0.0);
-    gridio_print_info(a.info, &m);
-
-    fprintf(a.info, "Writing polyMesh to %s (%s%s)\n\n", io.to_stdout ? "stdout" : io.out,
-            io.w.binary ? "binary" : "ascii", io.w.gzip ? ", gzip" : "");
-    if (gridio_write(&m, io.out, &io.w, &e)) err_die(&e);
+    gridtool_print_info(a.info, &m);
+    gridtool_write(&a, &io, &m);
 
     log_exec(&a);
     log_end(&a);
     mesh_free(&m);
     block_free(&spec);
     dict_free(d);
-    gridio_free(&io);
+    gridtool_free(&io);
+    case_free(&cs);
     free(dict_path);
     args_free(&a);
     return 0;

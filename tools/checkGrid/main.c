@@ -11,6 +11,7 @@
 ** doc/tools/checkGrid.md.
 */
 #include "args.h"
+#include "case.h"
 #include "buf.h"
 #include "err.h"
 #include "foam.h"
@@ -53,7 +54,7 @@ static int write_set(const char *dir, const char *name, const Mesh *m, const dou
 }
 
 /* The -writeSets sets, in <case>/constant/polyMesh/sets. */
-static void write_sets(const Args *a, const Mesh *m)
+static void write_sets(const Args *a, const Case *c, const Mesh *m)
 {
     Err e;
     double *skew = mem_alloc(sizeof(double) * ((size_t)m->nfaces + 1));
@@ -62,7 +63,7 @@ static void write_sets(const Args *a, const Mesh *m)
     /* non-orthogonality above the limit is cos below cos(limit) */
     double lim = -cos(QUALITY_NONORTH_SEVERE * 3.14159265358979323846 / 180);
     for (int f = 0; f < m->nfaces; f++) cosn[f] = -cosn[f];
-    char *dir = args_case_path(a, "constant/polyMesh/sets");
+    char *dir = case_path(c, "constant/polyMesh/sets");
     int ns, no;
     if (io_mkdir_p(dir, &e) || (ns = write_set(dir, "skewFaces", m, skew, QUALITY_SKEW_HIGH, &e)) < 0 ||
         (no = write_set(dir, "nonOrthoFaces", m, cosn, lim, &e)) < 0)
@@ -82,9 +83,11 @@ int main(int argc, char **argv)
     Err e;
     args_parse(argc, argv, &tool, &a);
     if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
-    const char *in = args_get(&a, &tool, "-i");
-    char *dir = in ? mem_strdup(in) : args_case_path(&a, "constant/polyMesh");
     args_banner(&a, &tool);
+    Case cs;
+    if (case_open(&cs, a.case_dir, CASE_CONTROL_FORMAT, &e)) err_die(&e);
+    const char *in = args_get(&a, &tool, "-i");
+    char *dir = in ? mem_strdup(in) : case_path(&cs, "constant/polyMesh");
     fprintf(a.info, "Reading grid from %s\n\n", strcmp(dir, "-") ? dir : "stdin");
 
     Mesh m;
@@ -97,7 +100,7 @@ int main(int argc, char **argv)
     quality_report(&m, &q, &b);
     fwrite(b.p, 1, b.n, a.info);
     buf_free(&b);
-    if (args_get(&a, &tool, "-writeSets")) write_sets(&a, &m);
+    if (args_get(&a, &tool, "-writeSets")) write_sets(&a, &cs, &m);
 
     int nfailed;
     int rc = quality_check(&m, &q, &nfailed, &e);
@@ -109,6 +112,7 @@ int main(int argc, char **argv)
     log_exec(&a);
     log_end(&a);
     mesh_free(&m);
+    case_free(&cs);
     free(dir);
     args_free(&a);
     return 0;

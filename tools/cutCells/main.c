@@ -15,8 +15,7 @@
 #include "dict.h"
 #include "err.h"
 #include "geometry.h"
-#include "gridio.h"
-#include "io.h"
+#include "gridtool.h"
 #include "mem.h"
 #include "mesh.h"
 
@@ -33,10 +32,6 @@ static const ArgOpt opts[] = {
     {"-gzip", NULL, "gzip the files (default: writeCompression of system/controlDict, else off)"},
     {0}};
 
-static const DictKey cut_keys[] = {
-    {"snapTolerance", "1e-08", "cut points closer than this fraction of an edge to a grid vertex move onto it"},
-    {NULL, NULL, NULL}};
-
 static const ArgDict dicts[] = {{"system/geometryDict", geometry_keys, NULL},
                                 {"system/geometryDict, each entry of surfaces", geometry_surface_keys, NULL},
                                 {"system/geometryDict, each shape", geometry_shape_keys, geometry_help_note},
@@ -45,25 +40,6 @@ static const ArgDict dicts[] = {{"system/geometryDict", geometry_keys, NULL},
 
 static const ToolInfo tool = {"cutCells", "cuts a block grid with an immersed geometry into exact cut cells",
                               opts, dicts, 0};
-
-static void read_opts(const Args *a, CutOpts *o)
-{
-    cut_opts_default(o);
-    char *path = a->dict ? mem_strdup(a->dict) : args_case_path(a, "system/cutCellsDict");
-    Err e;
-    if (io_exists(path) || io_exists_gz(path)) {
-        Dict *d = dict_read(path, &e);
-        if (!d || dict_check_keys(d, cut_keys, &e) || dict_scalar_or(d, "snapTolerance", o->snap, &o->snap, &e))
-            err_die(&e);
-        if (!(o->snap >= 0 && o->snap < 0.25)) {
-            const DictEntry *en = dict_find(d, "snapTolerance");
-            err_set(&e, path, en ? en->line : 0, "snapTolerance must be in [0, 0.25), found %g", o->snap);
-            err_die(&e);
-        }
-        dict_free(d);
-    }
-    free(path);
-}
 
 static void report(FILE *f, const CutStats *s, const Geometry *g, const Mesh *m)
 {
@@ -96,26 +72,25 @@ int main(int argc, char **argv)
 {
     Args a;
     Err e;
-    args_parse(argc, argv, &tool, &a);
-    if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
-    GridIO io;
-    if (gridio_args(&a, &tool, 1, &io, &e)) err_die(&e);
+    Case cs;
+    GridTool io;
+    gridtool_start(argc, argv, &tool, 1, &a, &cs, &io);
     CutOpts co;
-    read_opts(&a, &co);
+    cut_opts_default(&co);
+    char *opts_path = args_dict_path(&a, &cs, "system/cutCellsDict", 1);
+    if (opts_path && cut_read_opts(opts_path, &co, &e)) err_die(&e);
 
     const char *gpath = args_get(&a, &tool, "-geometry");
-    char *geo_path = gpath ? mem_strdup(gpath) : args_case_path(&a, "system/geometryDict");
+    char *geo_path = gpath ? mem_strdup(gpath) : case_path(&cs, "system/geometryDict");
     fprintf(a.info, "Reading geometry from %s\n", geo_path);
     Geometry g;
-    if (geometry_read(&g, a.case_dir, geo_path, &e)) err_die(&e);
+    if (geometry_read(&g, cs.dir, geo_path, &e)) err_die(&e);
     for (int s = 0; s < g.nsurf; s++)
         fprintf(a.info, "  surface %s (%s): flow %s\n", g.surf[s].name, g.surf[s].type,
                 g.surf[s].flow_inside ? "inside" : "outside");
 
-    fprintf(a.info, "Reading grid from %s\n\n", strcmp(io.in, "-") ? io.in : "stdin");
     Mesh grid;
-    mesh_init(&grid);
-    if (mesh_read(&grid, io.in, &e)) err_die(&e);
+    gridtool_read(&a, &io, &grid);
     int flat = mesh_empty_axis(&grid);
     if (flat >= 0 && grid.cart.n[0] > 0) {
         double mid = 0.5 * (grid.cart.x[flat][0] + grid.cart.x[flat][grid.cart.n[flat]]);
@@ -130,11 +105,8 @@ int main(int argc, char **argv)
     double dt = args_wall(&a) - t0;
     fprintf(a.info, "Cut %d Cartesian cells in %.3f s (%.3g cells/s)\n\n", st.ncart, dt, dt > 0 ? st.ncart / dt : 0.0);
     report(a.info, &st, &g, &m);
-    gridio_print_info(a.info, &m);
-
-    fprintf(a.info, "Writing polyMesh to %s (%s%s)\n\n", io.to_stdout ? "stdout" : io.out,
-            io.w.binary ? "binary" : "ascii", io.w.gzip ? ", gzip" : "");
-    if (gridio_write(&m, io.out, &io.w, &e)) err_die(&e);
+    gridtool_print_info(a.info, &m);
+    gridtool_write(&a, &io, &m);
 
     log_exec(&a);
     log_end(&a);
@@ -142,7 +114,9 @@ int main(int argc, char **argv)
     mesh_free(&grid);
     geometry_free(&g);
     free(geo_path);
-    gridio_free(&io);
+    free(opts_path);
+    gridtool_free(&io);
+    case_free(&cs);
     args_free(&a);
     return 0;
 }

@@ -13,6 +13,7 @@
 ** system/controlDict.  Warnings (#includeEtc ignored, ...) go to stderr.
 */
 #include "args.h"
+#include "case.h"
 #include "buf.h"
 #include "dict.h"
 #include "err.h"
@@ -87,9 +88,11 @@ int main(int argc, char **argv)
     if (value && keywords) err_fatal("-value and -keywords exclude each other");
     if (value && !entry) err_fatal("-value needs -entry");
 
-    char *path = strcmp(a.case_dir, ".") && file[0] != '/' && strcmp(file, "-") ? args_case_path(&a, file)
-                                                                               : mem_strdup(file);
+    /* no controlDict: dictQuery may be what mends a broken one */
     Err e;
+    Case cs;
+    if (case_open(&cs, a.case_dir, CASE_NO_CONTROL, &e)) err_die(&e);
+    char *path = strcmp(cs.dir, ".") && file[0] != '/' && strcmp(file, "-") ? case_path(&cs, file) : mem_strdup(file);
     Dict *d = dict_read(path, &e);
     if (!d) err_die(&e);
     for (size_t i = 0; i < dict_nwarnings(d); i++) err_warn("%s", dict_warning(d, i));
@@ -127,6 +130,7 @@ int main(int argc, char **argv)
     fwrite(out.p ? out.p : "", 1, out.n, stdout);
     buf_free(&out);
     dict_free(d);
+    case_free(&cs);
     free(path);
     free(a.argv);
     return 0;

@@ -15,9 +15,7 @@
 #include "args.h"
 #include "dict.h"
 #include "err.h"
-#include "gridio.h"
-#include "io.h"
-#include "mem.h"
+#include "gridtool.h"
 #include "merge.h"
 #include "mesh.h"
 
@@ -33,56 +31,10 @@ static const ArgOpt opts[] = {
     {"-gzip", NULL, "gzip the files (default: writeCompression of system/controlDict, else off)"},
     {0}};
 
-static const DictKey merge_keys[] = {
-    {"threshold", "0.5", "M_V: cells with V <= M_V x (parent Cartesian volume) are merged, in (0, 1]"},
-    {"criterion", "normal", "merge axis: normal = argmax |n_i|, normalSpacing = argmax |n_i h_i|"},
-    {"maxIter", "10", "rounds of re-merging clusters still below the bound, and of the quality pass (>= 0)"},
-    {"maxSkewness", "4", "quality pass: clusters with a face skewness above this merge further (0 = off, >= 0)"},
-    {NULL, NULL, NULL}};
-
 static const ArgDict dicts[] = {{"system/mergeCellsDict", merge_keys, "  optional; every keyword has a default\n"},
                                 {0}};
 
 static const ToolInfo tool = {"mergeCells", "merges small cut cells into face neighbours", opts, dicts, 0};
-
-static const char *const criteria[] = {"normal", "normalSpacing", NULL};
-
-static int bad_value(Err *e, const char *path, const Dict *d, const char *key, const char *what)
-{
-    const DictEntry *en = dict_find(d, key);
-    return err_set(e, path, en ? en->line : 0, "%s", what);
-}
-
-/* Options from the dictionary when it exists; defaults otherwise. */
-static int read_opts(const Args *a, MergeOpts *o, Err *e)
-{
-    merge_opts_default(o);
-    char *path = a->dict ? mem_strdup(a->dict) : args_case_path(a, "system/mergeCellsDict");
-    int rc = 0;
-    if (a->dict || io_exists(path) || io_exists_gz(path)) {
-        Dict *d = dict_read(path, e);
-        char msg[128];
-        rc = !d || dict_check_keys(d, merge_keys, e) || dict_scalar_or(d, "threshold", o->threshold, &o->threshold, e) ||
-             dict_choice_or(d, "criterion", criteria, o->criterion, &o->criterion, e) ||
-             dict_label_or(d, "maxIter", o->max_iter, &o->max_iter, e) ||
-             dict_scalar_or(d, "maxSkewness", o->max_skewness, &o->max_skewness, e);
-        if (!rc && !(o->threshold > 0 && o->threshold <= 1)) {
-            snprintf(msg, sizeof msg, "threshold must be in (0, 1], found %g", o->threshold);
-            rc = bad_value(e, path, d, "threshold", msg);
-        }
-        if (!rc && o->max_iter < 0) {
-            snprintf(msg, sizeof msg, "maxIter must be >= 0, found %d", o->max_iter);
-            rc = bad_value(e, path, d, "maxIter", msg);
-        }
-        if (!rc && !(o->max_skewness >= 0)) {
-            snprintf(msg, sizeof msg, "maxSkewness must be >= 0, found %g", o->max_skewness);
-            rc = bad_value(e, path, d, "maxSkewness", msg);
-        }
-        dict_free(d);
-    }
-    free(path);
-    return rc ? -1 : 0;
-}
 
 static void report(FILE *f, const MergeStats *s, const Mesh *m)
 {
@@ -116,19 +68,18 @@ int main(int argc, char **argv)
 {
     Args a;
     Err e;
-    args_parse(argc, argv, &tool, &a);
-    if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
-    GridIO io;
-    if (gridio_args(&a, &tool, 0, &io, &e)) err_die(&e);
+    Case cs;
+    GridTool io;
+    gridtool_start(argc, argv, &tool, 0, &a, &cs, &io);
     MergeOpts mo;
-    if (read_opts(&a, &mo, &e)) err_die(&e);
+    merge_opts_default(&mo);
+    char *opts_path = args_dict_path(&a, &cs, "system/mergeCellsDict", 1);
+    if (opts_path && merge_read_opts(opts_path, &mo, &e)) err_die(&e);
     fprintf(a.info, "Merging cells with V <= %g V_cart (criterion %s, maxIter %d, maxSkewness %g)\n", mo.threshold,
-            criteria[mo.criterion], mo.max_iter, mo.max_skewness);
+            merge_criteria[mo.criterion], mo.max_iter, mo.max_skewness);
 
-    fprintf(a.info, "Reading grid from %s\n\n", strcmp(io.in, "-") ? io.in : "stdin");
     Mesh grid, m;
-    mesh_init(&grid);
-    if (mesh_read(&grid, io.in, &e)) err_die(&e);
+    gridtool_read(&a, &io, &grid);
     MergeStats st;
     double t0 = args_wall(&a);
     if (merge_mesh(&grid, &mo, &m, &st, &e)) {
@@ -144,18 +95,17 @@ int main(int argc, char **argv)
     for (int c = 0; c < m.ncells; c++) st.vol_after += m.cell_vol[c];
     fprintf(a.info, "Merged %d cells in %.3f s (%.3g cells/s)\n\n", grid.ncells, dt, dt > 0 ? grid.ncells / dt : 0.0);
     report(a.info, &st, &m);
-    gridio_print_info(a.info, &m);
-
-    fprintf(a.info, "Writing polyMesh to %s (%s%s)\n\n", io.to_stdout ? "stdout" : io.out, io.w.binary ? "binary" : "ascii",
-            io.w.gzip ? ", gzip" : "");
-    if (gridio_write(&m, io.out, &io.w, &e)) err_die(&e);
+    gridtool_print_info(a.info, &m);
+    gridtool_write(&a, &io, &m);
 
     log_exec(&a);
     log_end(&a);
     merge_stats_free(&st);
     mesh_free(&m);
     mesh_free(&grid);
-    gridio_free(&io);
+    free(opts_path);
+    gridtool_free(&io);
+    case_free(&cs);
     args_free(&a);
     return 0;
 }

@@ -1,6 +1,6 @@
 /*
 ** sampleLine: samples fields along straight lines into CSV files, from
-** system/sampleLineDict.  See doc/tools/sampleLine.md and common/lines.h
+** system/sampleLineDict.  See doc/tools/sampleLine.md and common/sampleline.h
 ** (the dictionary and the CSV columns).
 **
 ** Output: postProcessing/sampleLine/<time>/<line>.csv, or under -o DIR;
@@ -9,8 +9,9 @@
 ** written.
 */
 #include "args.h"
+#include "case.h"
 #include "err.h"
-#include "lines.h"
+#include "sampleline.h"
 #include "locate.h"
 #include "mem.h"
 #include "mesh.h"
@@ -25,7 +26,7 @@ static const ArgOpt opts[] = {
     {"-line", "NAME", "sample only this line"},
     {0}};
 
-static const ArgDict dicts[] = {{"system/sampleLineDict", lines_keys, lines_help}, {0}};
+static const ArgDict dicts[] = {{"system/sampleLineDict", sampleline_keys, sampleline_help}, {0}};
 
 static const ToolInfo tool = {"sampleLine", "samples fields along lines to CSV", opts, dicts, 1};
 
@@ -39,42 +40,43 @@ int main(int argc, char **argv)
     int to_stdout = o && !strcmp(o, "-");
     if (to_stdout) args_info_to_stderr(&a);
     args_banner(&a, &tool);
+    Case cs;
+    if (case_open(&cs, a.case_dir, CASE_CONTROL_FORMAT, &e)) err_die(&e);
 
-    char *dpath = a.dict ? mem_strdup(a.dict) : args_case_path(&a, "system/sampleLineDict");
+    char *dpath = args_dict_path(&a, &cs, "system/sampleLineDict", 0);
     Dict *d = dict_read(dpath, &e);
-    Lines s;
-    if (!d || lines_parse(&s, d, &e)) err_die(&e);
+    SampleLineDict s;
+    if (!d || sampleline_parse(&s, d, &e)) err_die(&e);
     const char *only = args_get(&a, &tool, "-line");
-    if (only && lines_pick(&s, only, &e)) err_fatal("%s", e.msg);
+    if (only && sampleline_pick(&s, only, &e)) err_fatal("%s", e.msg);
 
-    TimeSel ts;
-    int nt = runtime_select_case(&ts, a.case_dir, a.time_spec, a.latest, a.nozero, &e);
+    int nt = case_select_times(&cs, a.time_spec, a.latest, a.nozero, &e);
     if (nt < 0) err_die(&e);
-    if (nt == 0) err_fatal("%s: no time directory selected", a.case_dir);
+    if (nt == 0) err_fatal("%s: no time directory selected", cs.dir);
 
     Mesh m;
-    char *mpath = args_case_path(&a, "constant/polyMesh");
+    char *mpath = case_path(&cs, "constant/polyMesh");
     if (mesh_read(&m, mpath, &e)) err_die(&e);
     mesh_cell_faces(&m);
     mesh_geometry(&m);
     Locator L;
     locate_build(&L, &m);
 
-    char *outdir = to_stdout ? NULL : o ? mem_strdup(o) : args_case_path(&a, "postProcessing/sampleLine");
+    char *outdir = to_stdout ? NULL : o ? mem_strdup(o) : case_path(&cs, "postProcessing/sampleLine");
     Buf log;
     buf_init(&log);
     for (int i = 0; i < nt; i++) {
-        const char *time = runtime_sel_time(&ts, i)->name;
+        const char *time = case_time(&cs, i);
         log_time(&a, time);
-        LinesTime lt;
-        int rc = lines_time_begin(&lt, &s, &m, &L, a.case_dir, time, outdir, nt * s.nlines, &e);
+        SampleLineTime lt;
+        int rc = sampleline_time_begin(&lt, &s, &m, &L, cs.dir, time, outdir, nt * s.nlines, &e);
         for (int j = 0; j < s.nlines && !rc; j++) {
-            rc = lines_time_sample(&lt, &s.lines[j], &log, &e);
+            rc = sampleline_time_sample(&lt, &s.lines[j], &log, &e);
             fwrite(log.p, 1, log.n, a.info);
             buf_clear(&log);
         }
         fprintf(a.info, "\n");
-        lines_time_end(&lt);
+        sampleline_time_end(&lt);
         if (rc) err_die(&e);
     }
 
@@ -84,8 +86,8 @@ int main(int argc, char **argv)
     free(outdir);
     locate_free(&L);
     mesh_free(&m);
-    runtime_free_sel(&ts);
-    lines_free(&s);
+    case_free(&cs);
+    sampleline_free(&s);
     dict_free(d);
     free(mpath);
     free(dpath);

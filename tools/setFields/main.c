@@ -6,13 +6,14 @@
 ** nothing is written unless the dictionary and every field are good.
 **
 ** Times: the -time/-latestTime/-noZero selection, else controlDict's start
-** time (runtime_pick_times).  The fields' warnings (a boundaryField entry
+** time (case_pick_times).  The output format is the case's
+** (case_field_format), as for the grid tools.  The fields' warnings (a boundaryField entry
 ** naming no patch, kept and written back) go to stderr.
 */
 #include "args.h"
+#include "case.h"
 #include "err.h"
 #include "field.h"
-#include "mem.h"
 #include "mesh.h"
 #include "runtime.h"
 #include "setfields.h"
@@ -45,23 +46,22 @@ int main(int argc, char **argv)
     args_parse(argc, argv, &tool, &a);
     if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
     args_banner(&a, &tool);
+    Case cs;
+    if (case_open(&cs, a.case_dir, CASE_CONTROL_FORMAT, &e)) err_die(&e);
 
-    char *dpath = a.dict ? mem_strdup(a.dict) : args_case_path(&a, "system/setFieldsDict");
+    char *dpath = args_dict_path(&a, &cs, "system/setFieldsDict", 0);
     Dict *d = dict_read(dpath, &e);
     SetFields s;
     if (!d || setfields_parse(&s, d, &e)) err_die(&e);
     if (s.nfields == 0) err_fatal("%s: no field values to set", dpath);
 
-    Control ctl;
-    int have_ctl = runtime_read_control_opt(&ctl, a.case_dir, &e);
-    if (have_ctl < 0) err_die(&e);
-    FieldWriteOpts wo = {ctl.writeBinary, ctl.writeCompression, ctl.writePrecision, NULL};
-    TimeSel ts;
-    if (runtime_pick_times(&ts, a.case_dir, a.time_spec, a.latest, a.nozero, have_ctl ? &ctl : NULL, &e) < 0)
-        err_die(&e);
+    FieldWriteOpts wo;
+    case_field_format(&cs, &wo);
+    int nt = case_pick_times(&cs, a.time_spec, a.latest, a.nozero, &e);
+    if (nt < 0) err_die(&e);
 
     Mesh m;
-    char *mpath = args_case_path(&a, "constant/polyMesh");
+    char *mpath = case_path(&cs, "constant/polyMesh");
     if (mesh_read(&m, mpath, &e)) err_die(&e);
     mesh_cell_faces(&m);
     mesh_geometry(&m);
@@ -73,10 +73,10 @@ int main(int argc, char **argv)
 
     Buf warn;
     buf_init(&warn);
-    for (int i = 0; i < ts.n; i++) {
-        const char *time = runtime_sel_time(&ts, i)->name;
+    for (int i = 0; i < nt; i++) {
+        const char *time = case_time(&cs, i);
         log_time(&a, time);
-        int rc = setfields_time(&s, &m, a.case_dir, time, &wo, &log, &warn, &e);
+        int rc = setfields_time(&s, &m, cs.dir, time, &wo, &log, &warn, &e);
         fwrite(log.p, 1, log.n, a.info);
         buf_clear(&log);
         print_warnings(&warn);
@@ -87,11 +87,10 @@ int main(int argc, char **argv)
     log_exec(&a);
     log_end(&a);
     buf_free(&log);
-    runtime_free_sel(&ts);
     mesh_free(&m);
     setfields_free(&s);
     dict_free(d);
-    if (have_ctl) runtime_free_control(&ctl);
+    case_free(&cs);
     free(mpath);
     free(dpath);
     args_free(&a);

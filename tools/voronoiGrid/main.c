@@ -18,10 +18,11 @@
 #include "dict.h"
 #include "err.h"
 #include "geometry.h"
-#include "gridio.h"
+#include "gridtool.h"
 #include "io.h"
 #include "mem.h"
 #include "mesh.h"
+#include "seeds.h"
 #include "vgrid.h"
 
 #include <math.h>
@@ -37,14 +38,7 @@ static const ArgOpt opts[] = {
     {"-gzip", NULL, "gzip the files (default: writeCompression of system/controlDict, else off)"},
     {0}};
 
-static const DictKey voronoi_keys[] = {
-    {"layers", "0", "boundary layers b: interior seeds at depths (2i+1) h/2, i = 0..b (0..1000)"},
-    {"spacing", "1", "boundary seed spacing as a multiple of the grid spacing h, in (0, 4]"},
-    {"minSpacing", "0.5", "minimum seed spacing a as a multiple of h, in [0, spacing]: every cell's volume is "
-                          "at least pi a^3/6 (2-D: pi a^2/4 per unit thickness)"},
-    {NULL, NULL, NULL}};
-
-static const ArgDict dicts[] = {{"system/voronoiGridDict", voronoi_keys, "  optional; every keyword has a default\n"},
+static const ArgDict dicts[] = {{"system/voronoiGridDict", seeds_keys, "  optional; every keyword has a default\n"},
                                 {"system/geometryDict", geometry_keys, NULL},
                                 {"system/geometryDict, each entry of surfaces", geometry_surface_keys, NULL},
                                 {"system/geometryDict, each shape", geometry_shape_keys, geometry_help_note},
@@ -53,56 +47,18 @@ static const ArgDict dicts[] = {{"system/voronoiGridDict", voronoi_keys, "  opti
 static const ToolInfo tool = {"voronoiGrid", "boundary-conforming Voronoi grid of a block grid and a geometry", opts,
                               dicts, 0};
 
-static int bad_value(Err *e, const char *path, const Dict *d, const char *key, const char *what)
-{
-    const DictEntry *en = dict_find(d, key);
-    return err_set(e, path, en ? en->line : 0, "%s", what);
-}
-
-/* Options from the dictionary when it exists (or -dict); defaults
-   otherwise. */
-static int read_opts(const Args *a, SeedOpts *o, Err *e)
-{
-    seeds_opts_default(o);
-    char *path = a->dict ? mem_strdup(a->dict) : args_case_path(a, "system/voronoiGridDict");
-    int rc = 0;
-    if (a->dict || io_exists(path) || io_exists_gz(path)) {
-        Dict *d = dict_read(path, e);
-        char msg[160];
-        rc = !d || dict_check_keys(d, voronoi_keys, e) || dict_label_or(d, "layers", o->layers, &o->layers, e) ||
-             dict_scalar_or(d, "spacing", o->spacing, &o->spacing, e) ||
-             dict_scalar_or(d, "minSpacing", o->min_spacing, &o->min_spacing, e);
-        if (!rc && !(o->layers >= 0 && o->layers <= 1000)) {
-            snprintf(msg, sizeof msg, "layers must be in 0..1000, found %d", o->layers);
-            rc = bad_value(e, path, d, "layers", msg);
-        }
-        if (!rc && !(o->spacing > 0 && o->spacing <= 4)) {
-            snprintf(msg, sizeof msg, "spacing must be in (0, 4], found %g", o->spacing);
-            rc = bad_value(e, path, d, "spacing", msg);
-        }
-        if (!rc && !(o->min_spacing >= 0 && o->min_spacing <= o->spacing)) {
-            snprintf(msg, sizeof msg, "minSpacing must be in [0, spacing = %g], found %g", o->spacing,
-                     o->min_spacing);
-            rc = bad_value(e, path, d, "minSpacing", msg);
-        }
-        if (d) dict_free(d);
-    }
-    free(path);
-    return rc;
-}
-
 /* The geometry, or none (*have = 0) when the default dictionary is
    absent. */
-static int read_geometry(const Args *a, Geometry *g, int *have, Err *e)
+static int read_geometry(const Args *a, const Case *c, Geometry *g, int *have, Err *e)
 {
     const char *gpath = args_get(a, &tool, "-geometry");
-    char *path = gpath ? mem_strdup(gpath) : args_case_path(a, "system/geometryDict");
+    char *path = gpath ? mem_strdup(gpath) : case_path(c, "system/geometryDict");
     geometry_init(g);
     *have = gpath || io_exists(path) || io_exists_gz(path);
     int rc = 0;
     if (*have) {
         fprintf(a->info, "Reading geometry from %s\n", path);
-        rc = geometry_read(g, a->case_dir, path, e);
+        rc = geometry_read(g, c->dir, path, e);
         for (int s = 0; !rc && s < g->nsurf; s++)
             fprintf(a->info, "  surface %s (%s): flow %s\n", g->surf[s].name, g->surf[s].type,
                     g->surf[s].flow_inside ? "inside" : "outside");
@@ -164,22 +120,21 @@ int main(int argc, char **argv)
 {
     Args a;
     Err e;
-    args_parse(argc, argv, &tool, &a);
-    if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
-    GridIO io;
-    if (gridio_args(&a, &tool, 1, &io, &e)) err_die(&e);
+    Case cs;
+    GridTool io;
+    gridtool_start(argc, argv, &tool, 1, &a, &cs, &io);
     SeedOpts so;
-    if (read_opts(&a, &so, &e)) err_die(&e);
+    seeds_opts_default(&so);
+    char *opts_path = args_dict_path(&a, &cs, "system/voronoiGridDict", 1);
+    if (opts_path && seeds_read_opts(opts_path, &so, &e)) err_die(&e);
     Geometry g;
     int have_geo;
-    if (read_geometry(&a, &g, &have_geo, &e)) err_die(&e);
+    if (read_geometry(&a, &cs, &g, &have_geo, &e)) err_die(&e);
     fprintf(a.info, "Seeds: %d boundary layer(s), boundary spacing %g h, minimum spacing %g h\n", so.layers,
             so.spacing, so.min_spacing);
 
-    fprintf(a.info, "Reading grid from %s\n\n", strcmp(io.in, "-") ? io.in : "stdin");
     Mesh grid;
-    mesh_init(&grid);
-    if (mesh_read(&grid, io.in, &e)) err_die(&e);
+    gridtool_read(&a, &io, &grid);
     int flat = mesh_empty_axis(&grid);
     if (flat >= 0 && grid.cart.n[0] > 0 && g.nsurf)
         fprintf(a.info, "2-D grid: the geometry is cut by the plane %c = %g\n\n", "xyz"[flat],
@@ -193,18 +148,17 @@ int main(int argc, char **argv)
     double dt = args_wall(&a) - t0;
     fprintf(a.info, "Built %d Voronoi cells in %.3f s (%.3g cells/s)\n\n", st.ncells, dt, dt > 0 ? st.ncells / dt : 0.0);
     report(a.info, &st, &g, &m, &grid);
-    gridio_print_info(a.info, &m);
-
-    fprintf(a.info, "Writing polyMesh to %s (%s%s)\n\n", io.to_stdout ? "stdout" : io.out,
-            io.w.binary ? "binary" : "ascii", io.w.gzip ? ", gzip" : "");
-    if (gridio_write(&m, io.out, &io.w, &e)) err_die(&e);
+    gridtool_print_info(a.info, &m);
+    gridtool_write(&a, &io, &m);
 
     log_exec(&a);
     log_end(&a);
     mesh_free(&m);
     mesh_free(&grid);
     geometry_free(&g);
-    gridio_free(&io);
+    free(opts_path);
+    gridtool_free(&io);
+    case_free(&cs);
     args_free(&a);
     return 0;
 }

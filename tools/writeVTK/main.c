@@ -10,6 +10,7 @@
 ** mesh and the time selection are known to be good.
 */
 #include "args.h"
+#include "case.h"
 #include "err.h"
 #include "field.h"
 #include "io.h"
@@ -39,8 +40,10 @@ int main(int argc, char **argv)
     args_parse(argc, argv, &tool, &a);
     if (a.argc > 0) err_fatal("unexpected argument '%s'; try 'writeVTK -help'", a.argv[0]);
     args_banner(&a, &tool);
+    Case cs;
+    if (case_open(&cs, a.case_dir, CASE_CONTROL_FORMAT, &e)) err_die(&e);
     Mesh m;
-    char *mdir = args_case_path(&a, "constant/polyMesh");
+    char *mdir = case_path(&cs, "constant/polyMesh");
     if (mesh_read(&m, mdir, &e)) err_die(&e);
     free(mdir);
     mesh_cell_faces(&m);
@@ -50,7 +53,7 @@ int main(int argc, char **argv)
     int nwant = vtkcase_field_names(fspec ? fspec : "", &want);
     if (fspec && nwant == 0) err_fatal("-fields '%s' names no field", fspec);
     VtkCase v;
-    if (vtkcase_open(&v, a.case_dir, &m, a.time_spec, a.latest, a.nozero, &e) ||
+    if (vtkcase_open(&v, cs.dir, &m, a.time_spec, a.latest, a.nozero, &e) ||
         vtkcase_mkdir(&v, args_get(&a, &tool, "-overwrite") != NULL, &e))
         err_die(&e);
     v.opts.binary = !args_get(&a, &tool, "-ascii");
@@ -90,6 +93,7 @@ int main(int argc, char **argv)
     io_free_list(want, nwant);
     vtkcase_free(&v);
     mesh_free(&m);
+    case_free(&cs);
     args_free(&a);
     return 0;
 }

@@ -1,9 +1,11 @@
 /*
 ** args.c: shared command line, banner and OpenFOAM-style log lines.
-** See args.h.
+** See args.h.  A bad option or a missing case directory ends the tool
+** here, before anything is read.
 */
 #include "args.h"
 #include "err.h"
+#include "errout.h"
 #include "io.h"
 #include "mem.h"
 
@@ -55,7 +57,7 @@ static void usage_error(const ToolInfo *t, const char *fmt, const char *what)
     fprintf(stderr, "%s: ", t->name);
     fprintf(stderr, fmt, what);
     fprintf(stderr, "\nTry '%s -help'.\n", t->name);
-    exit(1);
+    exit(ERR_EXIT);
 }
 
 void args_parse(int argc, char **argv, const ToolInfo *t, Args *a)
@@ -103,12 +105,12 @@ void args_parse(int argc, char **argv, const ToolInfo *t, Args *a)
     a->argv = pos;
     if (!io_is_dir(a->case_dir)) {
         fprintf(stderr, "%s: case directory '%s' does not exist\n", t->name, a->case_dir);
-        exit(1);
+        exit(ERR_EXIT);
     }
     /* a file that outgrows ulimit -f must fail with EFBIG (reported, old
        file kept), not kill the tool with SIGXFSZ halfway through */
     signal(SIGXFSZ, SIG_IGN);
-    char *mesh = args_case_path(a, "constant/polyMesh");
+    char *mesh = io_join(a->case_dir, "constant/polyMesh");
     args_recover(t, mesh);
     free(mesh);
 }
@@ -161,7 +163,16 @@ void args_banner(const Args *a, const ToolInfo *t)
     fflush(f);
 }
 
-char *args_case_path(const Args *a, const char *rel) { return io_join(a->case_dir, rel); }
+char *args_dict_path(const Args *a, const Case *c, const char *rel, int optional)
+{
+    if (a->dict) return mem_strdup(a->dict);
+    char *path = case_path(c, rel);
+    if (optional && !io_exists(path) && !io_exists_gz(path)) {
+        free(path);
+        return NULL;
+    }
+    return path;
+}
 
 static double wall_now(void)
 {

@@ -14,13 +14,19 @@
 ** Start-up repairs what an interrupted run left in the case (a grid moved
 ** aside, temporary directories of dead processes) before anything reads
 ** it, and says so on stderr: the library (io_recover_dir) only reports.
+**
+** This is the application frame (app/, doc/architecture.md): it prints
+** and exits, the library below it (common/) never does.  A usage error
+** exits with ERR_EXIT (errout.h), -help and -version with 0.
 */
 #ifndef KIESEL_ARGS_H
 #define KIESEL_ARGS_H
 
 #include <stdio.h>
 
+#include "case.h"
 #include "dict.h"
+#include "errout.h"
 
 #define KIESEL_VERSION "0.1.0"
 
@@ -74,8 +80,10 @@ const char *args_get(const Args *a, const ToolInfo *t, const char *name);
 void args_info_to_stderr(Args *a);
 /* Prints the banner (tool, version, case, date, host, pid). */
 void args_banner(const Args *a, const ToolInfo *t);
-/* Path of a case file: "<case>/<rel>" (caller frees). */
-char *args_case_path(const Args *a, const char *rel);
+/* Path of the tool's dictionary: the -dict file, else "<case>/<rel>"
+   (caller frees).  With optional, NULL when there is no -dict and
+   neither <rel> nor <rel>.gz exists (the tool keeps its defaults). */
+char *args_dict_path(const Args *a, const Case *c, const char *rel, int optional);
 
 /* Log lines in OpenFOAM's format. */
 void log_time(const Args *a, const char *time_name);  /* "Time = 0.5" */
