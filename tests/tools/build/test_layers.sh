@@ -9,12 +9,10 @@
 # header of app/, and no header of app/ shadows one of common/ (an
 # include by bare name would otherwise reach the wrong layer).
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 TOP=${KIESEL_TOP:-$(cd "$(dirname "$0")/../../.." && pwd)}
 TESTBIN=${KIESEL_TESTBIN:-$TOP/build/release/tests}
 LIB=$TESTBIN/../libkiesel.a
-
-pass() { echo "PASS $1"; }
-fail() { echo "FAIL $1: $2"; }
 
 FORBIDDEN='exit _exit abort printf vprintf puts putchar perror stdout stderr'
 # the allowed exceptions: "object:symbol"

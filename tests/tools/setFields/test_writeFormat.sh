@@ -7,15 +7,9 @@
 # (compressed, uncompressed, yes, true, ...) is accepted by both tools;
 # a bad value stops both with controlDict:line.
 set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
 cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
-
-pass() { echo "PASS $1"; }
-fail() { echo "FAIL $1: $2"; }
-check() { # name, condition-command...
-    local n=$1; shift
-    if "$@"; then pass "$n"; else fail "$n" "$*"; fi
-}
 
 # new_case C FORMAT COMPRESSION: a fresh case (controlDict line 4 holds
 # the two keywords)
