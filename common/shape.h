@@ -119,7 +119,8 @@ void shape_closest(const Shape *s, const double x[3], double c[3]);
    Voronoi grid can reproduce them (thesis Fig. 3.16).  Returns the count;
    *x and *n (outward unit normals; at an edge or corner point the mean of
    the faces' normals, normalised) are new arrays of 3 per point.
-   Unbounded shapes are sampled inside the box lo..hi only. */
+   Unbounded shapes are sampled inside the box lo..hi only.  In
+   shape_sample.c. */
 int shape_sample(const Shape *s, double h, const double lo[3], const double hi[3], double **x, double **n);
 
 /* Axis-aligned bounding box (infinite extents as +-INFINITY). */
