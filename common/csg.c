@@ -24,9 +24,9 @@
 ** the node's state is a Boolean function of its operands' states, which
 ** change only at their events.
 **
-** Level (geometry_level): a primitive's exact signed distance (shape.h),
-** times 1/|A^-1|_2 when it is mapped (so it stays 1-Lipschitz: a lower
-** bound of the distance, exact for rigid motions), a triangulated
+** Level (geometry_level): a primitive's shape_bound (shape.h: 1-Lipschitz,
+** the exact distance for spheres and half-spaces), times 1/|A^-1|_2 when
+** it is mapped (so it stays 1-Lipschitz), a triangulated
 ** surface's signed distance, min over a union's operands, max over an
 ** intersection's, max(first, -others) for a difference, negated by a
 ** complement.  Min and max keep the 1-Lipschitz bound, which is all the
@@ -584,7 +584,7 @@ static double node_level(const GeoNode *n, const double x[3])
     case G_PRIM: {
         double l[3];
         csg_to_local(n, x, l);
-        v = shape_level(&n->shape, l);
+        v = shape_bound(&n->shape, l);
         if (n->has_xf) v *= n->lip;
         break;
     }

@@ -151,8 +151,9 @@ int geometry_nearest_leaf_of(const Geometry *g, int surface, const double x[3]);
 
 /* A level function of the flow domain: negative inside, positive
    outside, zero on its boundary, and 1-Lipschitz (|level(x) - level(y)|
-   <= |x - y|), so |level| never exceeds the distance to the boundary;
-   exactly that distance for one untransformed primitive (shape_level). */
+   <= |x - y|), so |level| never exceeds the distance to the boundary
+   (built on shape_bound; the distance itself for an untransformed
+   sphere or half-space). */
 double geometry_level(const Geometry *g, const double x[3]);
 
 /* A half-space n.x <= d. */

@@ -336,6 +336,48 @@ double shape_level(const Shape *s, const double x[3])
 
 int shape_inside(const Shape *s, const double x[3]) { return shape_level(s, x) < 0; }
 
+/* ---- bound (the volume integrator's level, volfrac.c) ----
+**
+** Slab distances and the cone's side-line distance, without the
+** Euclidean corner terms and nearest-point searches of shape_level; the
+** arithmetic is the one setFields' shapes have always used (axial
+** coordinate t = (x - p).(q - p) / L, rho^2 = |x - p|^2 - t^2), so the
+** fields it sets stay the same to the last bit.
+*/
+
+static void bound_axis(const Shape *s, const double x[3], double *t, double *rho, double *len)
+{
+    double a[3], d[3];
+    shape_sub(s->q, s->p, a);
+    shape_sub(x, s->p, d);
+    double L = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    double sc = (d[0] * a[0] + d[1] * a[1] + d[2] * a[2]) / L;
+    double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - sc * sc;
+    *t = sc;
+    *rho = sqrt(dd > 0 ? dd : 0);
+    *len = L;
+}
+
+double shape_bound(const Shape *s, const double x[3])
+{
+    double t, rho, L, phi = -INFINITY;
+    switch (s->kind) {
+    case SHAPE_BOX:
+        for (int k = 0; k < 3; k++) phi = fmax(phi, fmax(s->p[k] - x[k], x[k] - s->q[k]));
+        return phi;
+    case SHAPE_CYLINDER:
+        bound_axis(s, x, &t, &rho, &L);
+        return s->infinite ? rho - s->r1 : fmax(rho - s->r1, fmax(-t, t - L));
+    case SHAPE_CONE: {
+        bound_axis(s, x, &t, &rho, &L);
+        double k = (s->r2 - s->r1) / L;
+        /* rho - R(t) has gradient norm sqrt(1 + k^2) */
+        return fmax((rho - (s->r1 + k * t)) / sqrt(1 + k * k), fmax(-t, t - L));
+    }
+    default: return shape_level(s, x);
+    }
+}
+
 /* ---- nearest point and normal ---- */
 
 static void near_box(const Shape *s, const double x[3], double c[3], double n[3])

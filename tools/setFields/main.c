@@ -12,6 +12,7 @@
 #include "args.h"
 #include "err.h"
 #include "field.h"
+#include "geometry.h"
 #include "mem.h"
 #include "mesh.h"
 #include "runtime.h"
@@ -21,7 +22,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const ArgDict dicts[] = {{"system/setFieldsDict", setfields_keys, setfields_help}, {0}};
+static const ArgDict dicts[] = {{"system/setFieldsDict", setfields_keys, setfields_help},
+                                {"system/setFieldsDict, a shapeToCell region", geometry_shape_keys, NULL},
+                                {0}};
 
 static const ToolInfo tool = {"setFields", "sets field values in boxes, spheres, cylinders, cones, half-spaces",
                               NULL, dicts, 1};
@@ -49,7 +52,7 @@ int main(int argc, char **argv)
     char *dpath = a.dict ? mem_strdup(a.dict) : args_case_path(&a, "system/setFieldsDict");
     Dict *d = dict_read(dpath, &e);
     SetFields s;
-    if (!d || setfields_parse(&s, d, &e)) err_die(&e);
+    if (!d || setfields_parse(&s, d, a.case_dir, &e)) err_die(&e);
     if (s.nfields == 0) err_fatal("%s: no field values to set", dpath);
 
     Control ctl;
