@@ -202,12 +202,12 @@ static int check_sides(const BlockSide *side, const int n[3], const char *file, 
             if (!strcmp(side[t].name, side[s].name) && strcmp(side[t].type, side[s].type))
                 return err_set(e, file, ln, "boundary %s: patch '%s' is %s here but %s on side %s", sn,
                                side[s].name, side[s].type, side[t].type, block_side_names[t]);
-        if (!strcmp(side[s].type, "empty")) {
+        if (mesh_type_is_empty(side[s].type)) {
             if (n[s / 2] != 1)
                 return err_set(e, file, ln,
                                "boundary %s: empty side needs exactly 1 cell along %s, found %d", sn,
                                axis_names[s / 2], n[s / 2]);
-            if (strcmp(side[s ^ 1].type, "empty"))
+            if (!mesh_type_is_empty(side[s ^ 1].type))
                 return err_set(e, file, ln, "boundary %s: empty side needs %s empty too, found %s", sn,
                                block_side_names[s ^ 1], side[s ^ 1].type);
         }

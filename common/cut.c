@@ -28,7 +28,10 @@
 ** crossing is found on copies of the edge moved across it (offset_cut).
 ** Afterwards each fluid corner keeps a corner piece at least snap x (edge)
 ** wide, so no face or cell has zero size.  Vertices a crossing meets are
-** on the surface too (mark_vertex_crossings).  Being solid for the grid,
+** on the surface too (mark_vertex_crossings), and so are those next to
+** the surface whose cells' probes disagree (probe_corners: a corner of
+** the geometry both of whose faces lie in grid planes through it, which
+** no crossing meets).  Being solid for the grid,
 ** a vertex on the surface is then judged by each of its cells on its own
 ** (step 6, local_masks: a probe towards the cell's centre), so the cells
 ** on the fluid side of a face on a grid plane keep their whole volume
@@ -520,6 +523,74 @@ static size_t snap_diagonal(Ctx *c, int64_t **list, size_t nl, size_t *lcap)
     return nl;
 }
 
+/* Does vertex v lie on the surface as the cells around it see it: do
+   probes PROBE x snap of the way from v towards the centres of its eight
+   cells disagree?  Beyond a side of the box the probe mirrors the cell
+   inside, so a face of the geometry on a side of the box is seen too. */
+static int probe_differs(const Ctx *c, int64_t v)
+{
+    int ijk[3], seen = -1;
+    vertex_ijk(c, v, ijk);
+    double eta = fmin(PROBE * c->snap, 0.25);
+    for (int q = 0; q < 8; q++) {
+        double x[3];
+        for (int a = 0; a < 3; a++) {
+            int up = (q >> a) & 1, lo = ijk[a] - up, in = lo < 0 ? 0 : lo >= c->n[a] ? c->n[a] - 1 : lo;
+            double w = c->x[a][in + 1] - c->x[a][in];
+            x[a] = c->x[a][ijk[a]] + eta * (up ? -w : w) / 2;
+        }
+        int f = geometry_fluid(c->g, x);
+        if (seen >= 0 && f != seen) return 1;
+        seen = f;
+    }
+    return 0;
+}
+
+/* Vertices on the surface that no crossing meets and no diagonal shows:
+   a corner of the geometry whose two faces lie in the grid planes through
+   the vertex (the rim of a slab thinner than a cell on a grid line, a
+   prism's edge on a grid line), so every grid line through it lies in a
+   face.  They are searched among the grid neighbours of the vertices
+   already known on the surface, outwards while new ones turn up: a fluid
+   one joins the snapping list, a solid one is marked; either way each of
+   its cells then judges it by its own probe (local_masks). */
+static size_t probe_corners(Ctx *c, int64_t **list, size_t nl, size_t *lcap)
+{
+    int64_t nvt = c->sv[2] * c->nv[2], *queue = NULL;
+    size_t nq = 0, qcap = 0;
+    char *seen = mem_alloc((size_t)nvt);
+    memset(seen, 0, (size_t)nvt);
+    for (int64_t v = 0; v < nvt; v++)
+        if (c->onsurf[v] || c->cls[v] == 2) {
+            seen[v] = 1;
+            mem_grow((void **)&queue, &qcap, nq + 1, sizeof *queue);
+            queue[nq++] = v;
+        }
+    for (size_t h = 0; h < nq; h++) {
+        int ijk[3];
+        vertex_ijk(c, queue[h], ijk);
+        for (int a = 0; a < 3; a++)
+            for (int dir = -1; dir <= 1; dir += 2) {
+                if (ijk[a] + dir < 0 || ijk[a] + dir >= c->nv[a]) continue;
+                int64_t w = queue[h] + dir * c->sv[a];
+                if (seen[w] || !probe_differs(c, w)) continue;
+                seen[w] = 1;
+                if (c->cls[w] == 1) {
+                    c->cls[w] = 2;
+                    mem_grow((void **)list, lcap, nl + 1, sizeof **list);
+                    (*list)[nl++] = w;
+                } else {
+                    c->onsurf[w] = 1;
+                }
+                mem_grow((void **)&queue, &qcap, nq + 1, sizeof *queue);
+                queue[nq++] = w;
+            }
+    }
+    free(queue);
+    free(seen);
+    return nl;
+}
+
 static void snap(Ctx *c)
 {
     int64_t *list = NULL;
@@ -543,7 +614,10 @@ static void snap(Ctx *c)
             mem_grow((void **)&list, &lcap, nl + 1, sizeof *list);
             list[nl++] = v;
         }
-    if (c->snap > 0) nl = snap_diagonal(c, &list, nl, &lcap);
+    if (c->snap > 0) {
+        nl = snap_diagonal(c, &list, nl, &lcap);
+        nl = probe_corners(c, &list, nl, &lcap);
+    }
     for (size_t i = 0; i < c->cap; i++) {
         CutPt *p = &c->tab[i];
         if (p->key < 0) continue;

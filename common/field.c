@@ -1,5 +1,7 @@
 /*
-** field.c: volScalarField / volVectorField files.  See field.h.
+** field.c: volScalarField / volVectorField files.  See field.h.  What
+** the patch types mean and the face values they give are in field_bc.c,
+** the fields of a time directory in field_time.c.
 **
 ** Reading goes through the dictionary parser (dict.c), which already
 ** handles ascii, binary and gzip, so this file only interprets entries:
@@ -62,34 +64,6 @@
 #include <string.h>
 #include <strings.h>
 
-/* ---- patch types ---- */
-
-static int type_is(const char *t, const char *name) { return t && strcmp(t, name) == 0; }
-
-/* Types whose value is part of the condition and must be read. */
-static int type_needs_value(const char *t)
-{
-    return type_is(t, "fixedValue") || type_is(t, "calculated");
-}
-
-/* Types understood here that carry no value of their own. */
-static int type_valueless(const char *t)
-{
-    static const char *const names[] = {"zeroGradient", "slip",     "noSlip",        "empty",
-                                        "cyclic",       "symmetry", "symmetryPlane", NULL};
-    for (int i = 0; names[i]; i++)
-        if (type_is(t, names[i])) return 1;
-    return 0;
-}
-
-/* Mesh patch types that force the same patch-field type (OpenFOAM's
-   constraint types). */
-static int type_constraint(const char *t)
-{
-    return type_is(t, "empty") || type_is(t, "cyclic") || type_is(t, "symmetry") ||
-           type_is(t, "symmetryPlane") || type_is(t, "wedge");
-}
-
 /* ---- init / free ---- */
 
 void field_init(Field *f, const Mesh *m, const char *name, int width, const double *uniform,
@@ -108,9 +82,9 @@ void field_init(Field *f, const Mesh *m, const char *name, int width, const doub
     for (int p = 0; p < m->npatches; p++) {
         PatchField *pf = &f->pf[p];
         const char *pt = m->patches[p].type;
-        pf->type = mem_strdup(type_constraint(pt) ? pt : default_type);
+        pf->type = mem_strdup(field_type_constraint(pt) ? pt : default_type);
         pf->n = m->patches[p].size;
-        if (type_needs_value(pf->type)) {
+        if (field_type_needs_value(pf->type)) {
             size_t npv = (size_t)pf->n * (size_t)width;
             pf->value = MEM_NEW(double, npv);
             for (int i = 0; i < pf->n; i++)
@@ -420,7 +394,7 @@ static int match_patches(const Dict *bf, const Mesh *m, const char *file, const 
     }
     for (int p = 0; p < np; p++) {
         if (set[p]) continue;
-        if (type_constraint(m->patches[p].type)) {
+        if (field_type_constraint(m->patches[p].type)) {
             set[p] = 1;
             continue;
         }
@@ -558,8 +532,8 @@ static int read_patch(PatchField *pf, const Patch *patch, const DictEntry *en, i
                        tn ? dict_node_kind_name(tn) : "several values");
     /* OpenFOAM refuses a basic type on a constraint patch; unknown types
        may derive from the constraint (fan on cyclic) and are let through */
-    if (type_constraint(patch->type) && strcmp(type, patch->type) != 0 &&
-        (type_needs_value(type) || type_valueless(type))) {
+    if (field_type_constraint(patch->type) && strcmp(type, patch->type) != 0 &&
+        (field_type_needs_value(type) || field_type_valueless(type))) {
         const DictEntry *te = dict_find(pd, "type");
         return err_set(e, te->file, te->line, "patch '%s' is of type %s in the mesh: its field type must be %s, found %s",
                        patch->name, patch->type, patch->type, type);
@@ -567,9 +541,9 @@ static int read_patch(PatchField *pf, const Patch *patch, const DictEntry *en, i
     pf->type = mem_strdup(type);
     const DictEntry *ve = dict_find(pd, "value");
     if (ve && ve->dict) ve = NULL;
-    if (!ve && type_needs_value(type))
+    if (!ve && field_type_needs_value(type))
         return err_set(e, en->file, en->line, "patch '%s': type %s needs a value entry", patch->name, type);
-    if (ve && !type_valueless(type)) {
+    if (ve && !field_type_valueless(type)) {
         char what[512];
         char whole[300];
         snprintf(what, sizeof what, "boundaryField.%s.value", patch->name);
@@ -848,7 +822,7 @@ static void put_patch(Buf *b, const Field *f, const Patch *patch, const PatchFie
     buf_printf(b, "    %s\n    {\n", patch->name);
     put_keyword(b, 8, "type", 0);
     buf_printf(b, "%s;\n", pf->type);
-    if (pf->value && !type_is(pf->type, "empty")) {
+    if (pf->value && !mesh_type_is_empty(pf->type)) {
         put_keyword(b, 8, "value", 0);
         put_values(b, pf->value, (size_t)pf->n, f->width, o);
     }
@@ -863,7 +837,7 @@ int field_write(const Field *f, const Mesh *m, const char *path, const FieldWrit
                        f->ncells, f->npatches, m->ncells, m->npatches);
     /* a file OpenFOAM (and field_read) would refuse is never written */
     for (int p = 0; p < f->npatches; p++)
-        if (type_needs_value(f->pf[p].type) && !f->pf[p].value)
+        if (field_type_needs_value(f->pf[p].type) && !f->pf[p].value)
             return err_set(e, path, 0, "field %s, patch '%s': type %s has no value", f->name ? f->name : "",
                            m->patches[p].name, f->pf[p].type);
     Buf b;
@@ -893,158 +867,4 @@ int field_write(const Field *f, const Mesh *m, const char *path, const FieldWrit
     int rc = io_write_atomic(path, b.p, b.n, o->gzip, e);
     buf_free(&b);
     return rc;
-}
-
-/* ---- boundary values ---- */
-
-/* Area vector of face fi: from the mesh geometry when computed, else the
-   polygon's vector area 1/2 sum p_i x p_{i+1}, which equals OpenFOAM's
-   triangle-fan sum about the face centre (the centre terms cancel). */
-static void face_area(const Mesh *m, int fi, double S[3])
-{
-    if (m->face_area) {
-        memcpy(S, m->face_area + 3 * (size_t)fi, 3 * sizeof *S);
-        return;
-    }
-    S[0] = S[1] = S[2] = 0;
-    int a = m->face_off[fi], n = m->face_off[fi + 1] - a;
-    for (int i = 0; i < n; i++) {
-        const double *p = m->points + 3 * (size_t)m->face_idx[a + i];
-        const double *q = m->points + 3 * (size_t)m->face_idx[a + (i + 1) % n];
-        S[0] += 0.5 * (p[1] * q[2] - p[2] * q[1]);
-        S[1] += 0.5 * (p[2] * q[0] - p[0] * q[2]);
-        S[2] += 0.5 * (p[0] * q[1] - p[1] * q[0]);
-    }
-}
-
-static void remove_normal(const Mesh *m, int fi, double *u)
-{
-    double S[3];
-    face_area(m, fi, S);
-    double a = sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
-    if (a == 0) return;
-    double nrm[3] = {S[0] / a, S[1] / a, S[2] / a};
-    double un = u[0] * nrm[0] + u[1] * nrm[1] + u[2] * nrm[2];
-    for (int k = 0; k < 3; k++) u[k] -= un * nrm[k];
-}
-
-static int find_patch(const Mesh *m, const char *name)
-{
-    for (int p = 0; p < m->npatches; p++)
-        if (strcmp(m->patches[p].name, name) == 0) return p;
-    return -1;
-}
-
-void field_patch_values(const Field *f, const Mesh *m, int p, double *out)
-{
-    const Patch *patch = &m->patches[p];
-    const PatchField *pf = &f->pf[p];
-    int w = f->width, n = patch->size;
-    const char *t = pf->type;
-    int partner = type_is(t, "cyclic") && patch->neighbour ? find_patch(m, patch->neighbour) : -1;
-    if (partner >= 0 && m->patches[partner].size != n) partner = -1;
-    for (int i = 0; i < n; i++) {
-        int fi = patch->start + i;
-        double *o = out + (size_t)i * w;
-        const double *own = f->v + (size_t)m->owner[fi] * w;
-        if (type_needs_value(t) && pf->value) {
-            memcpy(o, pf->value + (size_t)i * w, (size_t)w * sizeof *o);
-        } else if (type_is(t, "noSlip")) {
-            for (int k = 0; k < w; k++) o[k] = 0;
-        } else if (partner >= 0) {
-            const double *nb = f->v + (size_t)m->owner[m->patches[partner].start + i] * w;
-            for (int k = 0; k < w; k++) o[k] = 0.5 * (own[k] + nb[k]);
-        } else {
-            memcpy(o, own, (size_t)w * sizeof *o);
-            if (w == 3 && (type_is(t, "slip") || type_is(t, "symmetry") || type_is(t, "symmetryPlane")))
-                remove_normal(m, fi, o);
-        }
-    }
-}
-
-/* ---- the fields of a time directory ---- */
-
-/* "<case>/<time>/<name>", joined as the tools have always joined it so
-   that messages naming the file do not change. */
-char *field_time_path(const char *case_dir, const char *time, const char *name)
-{
-    char *rel = io_join(time, name), *path = io_join(case_dir, rel);
-    free(rel);
-    return path;
-}
-
-int field_read_time(Field *f, const Mesh *m, const char *case_dir, const char *time, const char *name, char **path,
-                    Err *e)
-{
-    char *p = field_time_path(case_dir, time, name);
-    int rc = !io_exists_gz(p) ? 1 : field_read(f, m, p, e) ? -1 : 0;
-    if (path) *path = p;
-    else free(p);
-    return rc;
-}
-
-static int name_listed(const char *const *names, int n, const char *x)
-{
-    for (int i = 0; i < n; i++)
-        if (!strcmp(names[i], x)) return 1;
-    return 0;
-}
-
-static int field_listed(const Field *f, int n, const char *name)
-{
-    for (int i = 0; i < n; i++)
-        if (!strcmp(f[i].name, name)) return 1;
-    return 0;
-}
-
-/* The vol field in dir/file, if wanted: 1 when read into f[nread], 0 when
-   skipped, -1 on error (a file asked for by name that is no vol field).
-   "U" and "U.gz" are one field: the first read wins. */
-static int read_dir_entry(const Mesh *m, const char *dir, const char *file, const char *const *want, int nwant,
-                          Field *f, int nread, Err *e)
-{
-    size_t l = strlen(file);
-    char *name = l > 3 && !strcmp(file + l - 3, ".gz") ? mem_strndup(file, l - 3) : mem_strdup(file);
-    char *path = io_join(dir, file), *cls = NULL;
-    int requested = name_listed(want, nwant, name), rc = 0;
-    if (!io_is_dir(path) && (nwant == 0 || requested) && !field_listed(f, nread, name)) {
-        int w = field_probe(path, &cls, e);
-        if (w < 0)
-            rc = -1;
-        else if (w == 0 && requested)
-            rc = err_set(e, path, 0, "field '%s' is %s%s%s, not a volScalarField or volVectorField", name,
-                         cls ? "of class '" : "not an OpenFOAM file with a class", cls ? cls : "", cls ? "'" : "");
-        else if (w > 0)
-            rc = field_read(&f[nread], m, path, e) ? -1 : 1;
-    }
-    free(cls);
-    free(path);
-    free(name);
-    return rc;
-}
-
-int field_read_dir(const Mesh *m, const char *dir, const char *const *want, int nwant, Field **out, Err *e)
-{
-    char **files;
-    int nf = io_list_dir(dir, &files, e);
-    if (nf < 0) return -1;
-    Field *f = MEM_NEW(Field, nf);
-    int n = 0, rc = 0;
-    for (int i = 0; i < nf && rc >= 0; i++) {
-        rc = read_dir_entry(m, dir, files[i], want, nwant, f, n, e);
-        if (rc > 0) n++;
-    }
-    io_free_list(files, nf);
-    if (rc < 0) {
-        field_free_all(f, n);
-        return -1;
-    }
-    *out = f;
-    return n;
-}
-
-void field_free_all(Field *f, int n)
-{
-    for (int i = 0; i < n && f; i++) field_free(&f[i]);
-    free(f);
 }

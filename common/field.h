@@ -97,10 +97,20 @@ int field_write(const Field *f, const Mesh *m, const char *path, const FieldWrit
    noSlip -> 0; cyclic -> average of owner and the cyclic partner's cell. */
 void field_patch_values(const Field *f, const Mesh *m, int p, double *out);
 
+/* What a patch type means (field_bc.c): it holds face values that are
+   part of the condition (fixedValue, calculated); it is understood here
+   and holds none (zeroGradient, slip, noSlip, empty, cyclic, symmetry,
+   symmetryPlane); it is a constraint type, which a mesh patch of that
+   type forces on its patch field (empty, cyclic, symmetry, symmetryPlane,
+   wedge).  NULL is none of them. */
+int field_type_needs_value(const char *type);
+int field_type_valueless(const char *type);
+int field_type_constraint(const char *type);
+
 /* Cell index of the first non-finite internal value, or -1. */
 long field_first_nonfinite(const Field *f);
 
-/* ---- the fields of a time directory ---- */
+/* ---- the fields of a time directory (field_time.c) ---- */
 
 /* "<case_dir>/<time>/<name>" (caller frees). */
 char *field_time_path(const char *case_dir, const char *time, const char *name);

@@ -962,7 +962,7 @@ static void work_init(Work *w, Mesh *g, const MergeOpts *o)
     w->cc0_ok = MEM_NEW(char, (size_t)nc);
     for (int p = 0; p < m->npatches; p++) {
         const Patch *pa = &m->patches[p];
-        w->empty_patch[p] = !strcmp(pa->type, "empty");
+        w->empty_patch[p] = mesh_patch_is_empty(pa);
         w->skip_patch[p] = w->empty_patch[p] || !strncmp(pa->type, "cyclic", 6);
         /* quality_empty_dirs's rule: the largest component of each empty
            face's area vector is an empty direction */
@@ -1139,7 +1139,7 @@ typedef struct Joined {
 static int is_empty_face(const Mesh *m, int f)
 {
     int p = mesh_face_patch(m, f);
-    return p >= 0 && !strcmp(m->patches[p].type, "empty");
+    return p >= 0 && mesh_patch_is_empty(&m->patches[p]);
 }
 
 static int point_on(const Mesh *m, int pt, int k, double v, double tol)
@@ -1392,10 +1392,7 @@ static void assemble(Work *w, const int *newid, int nout, Mesh *out)
     for (int p = 0; p < m->npatches; p++) {
         const Patch *pa = &m->patches[p];
         Patch *q = &out->patches[p];
-        q->name = mem_strdup(pa->name);
-        q->type = mem_strdup(pa->type);
-        q->neighbour = pa->neighbour ? mem_strdup(pa->neighbour) : NULL;
-        q->groups = pa->groups ? mem_strdup(pa->groups) : NULL;
+        mesh_patch_copy(pa, q);
         q->start = g;
         for (int f = pa->start; f < pa->start + pa->size; f++) {
             int jf = j.face ? j.face[f - m->ninternal] : -1;

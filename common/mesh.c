@@ -73,6 +73,11 @@ void mesh_cell_faces(Mesh *m)
 {
     free(m->cell_off);
     free(m->cell_faces);
+    mesh_cell_face_lists(m, &m->cell_off, &m->cell_faces);
+}
+
+void mesh_cell_face_lists(const Mesh *m, int **off_out, int **faces_out)
+{
     int nc = m->ncells;
     int *off = MEM_NEW(int, (size_t)nc + 1);
     for (int f = 0; f < m->nfaces; f++) off[m->owner[f] + 1]++;
@@ -87,8 +92,8 @@ void mesh_cell_faces(Mesh *m)
         if (f < m->ninternal) cf[pos[m->neighbour[f]]++] = f;
     }
     free(pos);
-    m->cell_off = off;
-    m->cell_faces = cf;
+    *off_out = off;
+    *faces_out = cf;
 }
 
 /* ---- geometry ---- */
@@ -138,6 +143,26 @@ int mesh_patch(const Mesh *m, const char *name)
     for (int p = 0; p < m->npatches; p++)
         if (strcmp(m->patches[p].name, name) == 0) return p;
     return -1;
+}
+
+void mesh_patch_copy(const Patch *p, Patch *q)
+{
+    q->name = mem_strdup(p->name);
+    q->type = mem_strdup(p->type);
+    q->neighbour = p->neighbour ? mem_strdup(p->neighbour) : NULL;
+    q->groups = p->groups ? mem_strdup(p->groups) : NULL;
+    q->start = p->start;
+    q->size = p->size;
+}
+
+int mesh_type_is_empty(const char *type)
+{
+    return type && strcmp(type, "empty") == 0;
+}
+
+int mesh_patch_is_empty(const Patch *p)
+{
+    return mesh_type_is_empty(p->type);
 }
 
 int mesh_face_patch(const Mesh *m, int f)
@@ -212,7 +237,7 @@ int mesh_empty_axis(const Mesh *m)
     int axis = -1, nempty = 0;
     for (int p = 0; p < m->npatches; p++) {
         const Patch *pa = &m->patches[p];
-        if (strcmp(pa->type, "empty") != 0) continue;
+        if (!mesh_patch_is_empty(pa)) continue;
         for (int f = pa->start; f < pa->start + pa->size; f++) {
             if (f < 0 || f >= m->nfaces) return -1;
             double S[3];
@@ -234,7 +259,7 @@ int mesh_empty_axis(const Mesh *m)
     int ok = 1;
     for (int p = 0; p < m->npatches && ok; p++) {
         const Patch *pa = &m->patches[p];
-        if (strcmp(pa->type, "empty") != 0) continue;
+        if (!mesh_patch_is_empty(pa)) continue;
         for (int f = pa->start; f < pa->start + pa->size && ok; f++) {
             int c = m->owner[f];
             if (c < 0 || c >= m->ncells || ++cnt[c] > 2) ok = 0;

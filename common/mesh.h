@@ -112,6 +112,9 @@ int mesh_read_stream(Mesh *m, const char *data, size_t n, const char *name, Err 
 void mesh_geometry(Mesh *m);
 /* Builds cell_off/cell_faces from owner/neighbour. */
 void mesh_cell_faces(Mesh *m);
+/* The same lists into new arrays *off (ncells+1) and *faces, for a mesh
+   that is only read (the caller frees them). */
+void mesh_cell_face_lists(const Mesh *m, int **off, int **faces);
 
 /* Checks the ordering and range invariants listed above; the message
    names the first offending face. */
@@ -123,6 +126,13 @@ int mesh_empty_axis(const Mesh *m);
 
 /* Patch index by name, or -1. */
 int mesh_patch(const Mesh *m, const char *name);
+/* Deep copy of patch p into q (new strings; start and size copied). */
+void mesh_patch_copy(const Patch *p, Patch *q);
+/* Is the patch of OpenFOAM's type empty (the front and back of a 2-D
+   case, which carry no values)?  mesh_type_is_empty for a bare type
+   name; a NULL type is not empty. */
+int mesh_patch_is_empty(const Patch *p);
+int mesh_type_is_empty(const char *type);
 /* Patch index of boundary face f, or -1 for an internal face. */
 int mesh_face_patch(const Mesh *m, int f);
 

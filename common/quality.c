@@ -225,7 +225,7 @@ void quality_empty_dirs(const Mesh *m, int empty[3])
 {
     empty[0] = empty[1] = empty[2] = 0;
     for (int p = 0; p < m->npatches; p++) {
-        if (strcmp(m->patches[p].type, "empty")) continue;
+        if (!mesh_patch_is_empty(&m->patches[p])) continue;
         for (int f = m->patches[p].start; f < m->patches[p].start + m->patches[p].size; f++) {
             const double *S = m->face_area + 3 * (size_t)f;
             int k = fabs(S[0]) >= fabs(S[1]) ? 0 : 1;

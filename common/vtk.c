@@ -172,36 +172,17 @@ static void put_title(Buf *b, const char *t)
 
 /* ---- cells of a 3-D mesh ---- */
 
-/* Cell -> face lists: the mesh's own (mesh_cell_faces) or built here, so
-   the writer also works on a mesh that only has owner/neighbour. */
+/* Cell -> face lists: the mesh's own (mesh_cell_faces) or made for the
+   call, so the writer also works on a mesh that only has owner/neighbour. */
 static void cell_faces(const Mesh *m, int **off, int **idx, int *own)
 {
-    if (m->cell_off && m->cell_faces) {
-        *off = m->cell_off;
-        *idx = m->cell_faces;
-        *own = 0;
+    *own = !(m->cell_off && m->cell_faces);
+    if (*own) {
+        mesh_cell_face_lists(m, off, idx);
         return;
     }
-    int *o = mem_calloc((size_t)m->ncells + 1, sizeof(int));
-    for (int f = 0; f < m->nfaces; f++) {
-        o[m->owner[f] + 1]++;
-        if (f < m->ninternal) o[m->neighbour[f] + 1]++;
-    }
-    for (int c = 0; c < m->ncells; c++) o[c + 1] += o[c];
-    int *x = MEM_NEW(int, o[m->ncells]);
-    int *fill = mem_calloc((size_t)m->ncells + 1, sizeof(int));
-    for (int f = 0; f < m->nfaces; f++) {
-        int c = m->owner[f];
-        x[o[c] + fill[c]++] = f;
-        if (f < m->ninternal) {
-            c = m->neighbour[f];
-            x[o[c] + fill[c]++] = f;
-        }
-    }
-    free(fill);
-    *off = o;
-    *idx = x;
-    *own = 1;
+    *off = m->cell_off;
+    *idx = m->cell_faces;
 }
 
 static int face_size(const Mesh *m, int f) { return m->face_off[f + 1] - m->face_off[f]; }
@@ -404,7 +385,7 @@ static int grid_2d(const Mesh *m, int axis, Grid *g, const char *path, const cha
     int rc = 0;
     for (int p = 0; p < m->npatches && rc == 0; p++) {
         const Patch *pa = &m->patches[p];
-        if (!pa->type || strcmp(pa->type, "empty")) continue;
+        if (!mesh_patch_is_empty(pa)) continue;
         for (int f = pa->start; f < pa->start + pa->size; f++) {
             if (face_normal_along(m, f, axis) >= 0) continue;
             int c = m->owner[f];

@@ -147,7 +147,7 @@ static char *vtk_file(const char *dir, const char *base, long index)
 }
 
 /* Patch p gets a file of its own unless it is of type empty. */
-static int patch_written(const VtkCase *v, int p) { return v->boundary && strcmp(v->m->patches[p].type, "empty"); }
+static int patch_written(const VtkCase *v, int p) { return v->boundary && !mesh_patch_is_empty(&v->m->patches[p]); }
 
 static int write_patch(const VtkCase *v, int p, long index, VtkOpts *o, const Field *f, int nf, Buf *log, Err *e)
 {

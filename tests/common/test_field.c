@@ -4,7 +4,7 @@
 **
 ** The mesh is built here directly (an nx x ny x 1 hex grid of unit cells
 ** with patches left, right, bottom, top, frontAndBack and a zero-size
-** patch hole), so these tests depend on nothing but field.c and dict.c.
+** patch hole), so these tests depend on nothing but field*.c and dict.c.
 */
 #include "test.h"
 

@@ -1,6 +1,6 @@
 /*
 ** sampleLine: samples fields along straight lines into CSV files, from
-** system/sampleLineDict.  See doc/tools/sampleLine.md and common/lines.h
+** system/sampleLineDict.  See doc/tools/sampleLine.md and common/sampleline.h
 ** (the dictionary and the CSV columns).
 **
 ** Output: postProcessing/sampleLine/<time>/<line>.csv, or under -o DIR;
@@ -10,7 +10,7 @@
 */
 #include "args.h"
 #include "err.h"
-#include "lines.h"
+#include "sampleline.h"
 #include "locate.h"
 #include "mem.h"
 #include "mesh.h"
@@ -25,7 +25,7 @@ static const ArgOpt opts[] = {
     {"-line", "NAME", "sample only this line"},
     {0}};
 
-static const ArgDict dicts[] = {{"system/sampleLineDict", lines_keys, lines_help}, {0}};
+static const ArgDict dicts[] = {{"system/sampleLineDict", sampleline_keys, sampleline_help}, {0}};
 
 static const ToolInfo tool = {"sampleLine", "samples fields along lines to CSV", opts, dicts, 1};
 
@@ -42,10 +42,10 @@ int main(int argc, char **argv)
 
     char *dpath = a.dict ? mem_strdup(a.dict) : args_case_path(&a, "system/sampleLineDict");
     Dict *d = dict_read(dpath, &e);
-    Lines s;
-    if (!d || lines_parse(&s, d, &e)) err_die(&e);
+    SampleLineDict s;
+    if (!d || sampleline_parse(&s, d, &e)) err_die(&e);
     const char *only = args_get(&a, &tool, "-line");
-    if (only && lines_pick(&s, only, &e)) err_fatal("%s", e.msg);
+    if (only && sampleline_pick(&s, only, &e)) err_fatal("%s", e.msg);
 
     TimeSel ts;
     int nt = runtime_select_case(&ts, a.case_dir, a.time_spec, a.latest, a.nozero, &e);
@@ -66,15 +66,15 @@ int main(int argc, char **argv)
     for (int i = 0; i < nt; i++) {
         const char *time = runtime_sel_time(&ts, i)->name;
         log_time(&a, time);
-        LinesTime lt;
-        int rc = lines_time_begin(&lt, &s, &m, &L, a.case_dir, time, outdir, nt * s.nlines, &e);
+        SampleLineTime lt;
+        int rc = sampleline_time_begin(&lt, &s, &m, &L, a.case_dir, time, outdir, nt * s.nlines, &e);
         for (int j = 0; j < s.nlines && !rc; j++) {
-            rc = lines_time_sample(&lt, &s.lines[j], &log, &e);
+            rc = sampleline_time_sample(&lt, &s.lines[j], &log, &e);
             fwrite(log.p, 1, log.n, a.info);
             buf_clear(&log);
         }
         fprintf(a.info, "\n");
-        lines_time_end(&lt);
+        sampleline_time_end(&lt);
         if (rc) err_die(&e);
     }
 
@@ -85,7 +85,7 @@ int main(int argc, char **argv)
     locate_free(&L);
     mesh_free(&m);
     runtime_free_sel(&ts);
-    lines_free(&s);
+    sampleline_free(&s);
     dict_free(d);
     free(mpath);
     free(dpath);

@@ -1,5 +1,7 @@
 /*
-** lines.c: sampleLineDict parsed into Lines, and the CSV files of a time.
+** sampleline.c: sampleLine's dictionary (system/sampleLineDict) parsed
+** into a SampleLineDict, and the CSV files of a time; the sampling itself
+** is linesample.c's.
 **
 ** Every line is checked when the dictionary is read (nPoints range, start
 ** != end in cells mode, a name usable as a file name, no name twice) and
@@ -9,19 +11,19 @@
 ** line.  Points outside the mesh are reported once per line over the
 ** whole run (SampleLine.reported), since the mesh does not change.
 */
-#include "lines.h"
+#include "sampleline.h"
 
 #include "field.h"
 #include "foam.h"
 #include "io.h"
+#include "linesample.h"
 #include "mem.h"
-#include "sample.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-const DictKey lines_keys[] = {
+const DictKey sampleline_keys[] = {
     {"fields", NULL, "fields to sample: (alpha.s U); vectors give columns U_x U_y U_z"},
     {"interpolation", "cell", "cell (the cell's value) | linear (cell value + least-squares gradient . (x - x_cell))"},
     {"lines", NULL, "{ NAME { start (x y z); end (x y z); nPoints N; mode uniform; } ... } or ( NAME { ... } ... )"},
@@ -34,7 +36,7 @@ static const DictKey line_keys[] = {
     {"nPoints", "100", "number of points (uniform mode)"},
     {0}};
 
-const char lines_help[] =
+const char sampleline_help[] =
     "\nKeywords of each line (start, end [required]; mode [uniform]; nPoints [100]):\n"
     "  uniform: nPoints points from start to end, both included;\n"
     "  cells:   one sample per cell crossed, at the middle of the crossing, with\n"
@@ -63,7 +65,7 @@ static int parse_line(const Dict *d, const char *name, SampleLine *l, Err *e)
     return 0;
 }
 
-static int add_line(Lines *s, const Dict *d, const char *name, Err *e)
+static int add_line(SampleLineDict *s, const Dict *d, const char *name, Err *e)
 {
     SampleLine l;
     if (parse_line(d, name, &l, e)) return -1;
@@ -73,7 +75,7 @@ static int add_line(Lines *s, const Dict *d, const char *name, Err *e)
 }
 
 /* lines { NAME { ... } ... } */
-static int parse_line_dict(Lines *s, const Dict *ld, Err *e)
+static int parse_line_dict(SampleLineDict *s, const Dict *ld, Err *e)
 {
     for (size_t i = 0; i < ld->n; i++) {
         const DictEntry *le = &ld->entries[i];
@@ -85,7 +87,7 @@ static int parse_line_dict(Lines *s, const Dict *ld, Err *e)
 }
 
 /* lines ( NAME { ... } ... ); */
-static int parse_line_list(Lines *s, const DictEntry *en, Err *e)
+static int parse_line_list(SampleLineDict *s, const DictEntry *en, Err *e)
 {
     const DictNode *nd = en->nvals == 1 ? en->vals[0] : NULL;
     if (!nd || nd->kind != DN_LIST)
@@ -100,7 +102,7 @@ static int parse_line_list(Lines *s, const DictEntry *en, Err *e)
     return 0;
 }
 
-static int parse_lines(Lines *s, const Dict *d, Err *e)
+static int parse_lines(SampleLineDict *s, const Dict *d, Err *e)
 {
     const DictEntry *en = dict_find(d, "lines");
     if (!en) return err_set(e, d->file, 0, "keyword 'lines' missing");
@@ -113,7 +115,7 @@ static int parse_lines(Lines *s, const Dict *d, Err *e)
     return 0;
 }
 
-static int parse_fields(Lines *s, const Dict *d, Err *e)
+static int parse_fields(SampleLineDict *s, const Dict *d, Err *e)
 {
     const DictEntry *en = dict_find(d, "fields");
     if (!en) return err_set(e, d->file, 0, "keyword 'fields' missing");
@@ -135,24 +137,24 @@ static int parse_fields(Lines *s, const Dict *d, Err *e)
     return 0;
 }
 
-int lines_parse(Lines *s, const Dict *d, Err *e)
+int sampleline_parse(SampleLineDict *s, const Dict *d, Err *e)
 {
     static const char *const interps[] = {"cell", "linear", NULL};
     memset(s, 0, sizeof *s);
-    if (dict_check_keys(d, lines_keys, e) || parse_fields(s, d, e) ||
+    if (dict_check_keys(d, sampleline_keys, e) || parse_fields(s, d, e) ||
         dict_choice_or(d, "interpolation", interps, SAMPLE_CELL_VALUE, &s->interp, e))
         return -1;
     return parse_lines(s, d, e);
 }
 
-void lines_free(Lines *s)
+void sampleline_free(SampleLineDict *s)
 {
     free(s->lines);
     free(s->fields);
     memset(s, 0, sizeof *s);
 }
 
-int lines_pick(Lines *s, const char *name, Err *e)
+int sampleline_pick(SampleLineDict *s, const char *name, Err *e)
 {
     for (int i = 0; i < s->nlines; i++)
         if (!strcmp(s->lines[i].name, name)) {
@@ -171,9 +173,9 @@ int lines_pick(Lines *s, const char *name, Err *e)
 
 /* ---- sampling one time ---- */
 
-static int read_data(LinesTime *t, const char *case_dir, Err *e)
+static int read_data(SampleLineTime *t, const char *case_dir, Err *e)
 {
-    const Lines *s = t->s;
+    const SampleLineDict *s = t->s;
     t->f = MEM_NEW(Field, s->nfields);
     t->grad = MEM_NEW(double *, s->nfields);
     for (int i = 0; i < s->nfields; i++) {
@@ -186,23 +188,23 @@ static int read_data(LinesTime *t, const char *case_dir, Err *e)
         if (rc) return -1;
         if (s->interp == SAMPLE_LINEAR) {
             t->grad[i] = MEM_NEW(double, (size_t)t->m->ncells * (size_t)t->f[i].width * 3);
-            sample_gradient(&t->f[i], t->m, t->grad[i]);
+            linesample_gradient(&t->f[i], t->m, t->grad[i]);
         }
     }
     return 0;
 }
 
-int lines_time_begin(LinesTime *t, const Lines *s, const Mesh *m, const Locator *L, const char *case_dir,
-                     const char *time, const char *outdir, int nblocks, Err *e)
+int sampleline_time_begin(SampleLineTime *t, const SampleLineDict *s, const Mesh *m, const Locator *L,
+                          const char *case_dir, const char *time, const char *outdir, int nblocks, Err *e)
 {
-    *t = (LinesTime){s, m, L, time, NULL, nblocks, NULL, NULL};
+    *t = (SampleLineTime){s, m, L, time, NULL, nblocks, NULL, NULL};
     if (read_data(t, case_dir, e)) return -1;
     if (!outdir) return 0;
     t->dir = io_join(outdir, time);
     return io_mkdir_p(t->dir, e);
 }
 
-void lines_time_end(LinesTime *t)
+void sampleline_time_end(SampleLineTime *t)
 {
     for (int i = 0; i < t->s->nfields && t->grad; i++) free(t->grad[i]);
     field_free_all(t->f, t->s->nfields);
@@ -217,9 +219,9 @@ static void put_num(Buf *b, double x)
     foam_put_double(b, x, 0);
 }
 
-static void put_csv(const LinesTime *t, const SampleSet *ss, Buf *b)
+static void put_csv(const SampleLineTime *t, const SampleSet *ss, Buf *b)
 {
-    const Lines *s = t->s;
+    const SampleLineDict *s = t->s;
     buf_puts(b, "distance,x,y,z");
     for (int i = 0; i < s->nfields; i++) {
         if (t->f[i].width == 1) buf_printf(b, ",%s", s->fields[i]);
@@ -232,7 +234,7 @@ static void put_csv(const LinesTime *t, const SampleSet *ss, Buf *b)
         for (int k = 0; k < 3; k++) put_num(b, ss->x[3 * p + k]);
         for (int i = 0; i < s->nfields; i++) {
             double v[3];
-            sample_value(&t->f[i], t->m, t->grad[i], ss->cell[p], ss->x + 3 * p, v);
+            linesample_value(&t->f[i], t->m, t->grad[i], ss->cell[p], ss->x + 3 * p, v);
             for (int k = 0; k < t->f[i].width; k++) put_num(b, v[k]);
         }
         if (ss->len) put_num(b, ss->len[p]);
@@ -240,11 +242,11 @@ static void put_csv(const LinesTime *t, const SampleSet *ss, Buf *b)
     }
 }
 
-int lines_time_sample(LinesTime *t, SampleLine *l, Buf *log, Err *e)
+int sampleline_time_sample(SampleLineTime *t, SampleLine *l, Buf *log, Err *e)
 {
     SampleSet ss;
-    if (l->mode == SAMPLE_CELLS) sample_cells(t->L, l->a, l->b, &ss);
-    else sample_uniform(t->L, l->a, l->b, l->npoints, &ss);
+    if (l->mode == SAMPLE_CELLS) linesample_cells(t->L, l->a, l->b, &ss);
+    else linesample_uniform(t->L, l->a, l->b, l->npoints, &ss);
     Buf b;
     buf_init(&b);
     if (!t->dir && t->nblocks > 1) buf_printf(&b, "# time %s line %s\n", t->time, l->name);
@@ -264,6 +266,6 @@ int lines_time_sample(LinesTime *t, SampleLine *l, Buf *log, Err *e)
     }
     free(path);
     buf_free(&b);
-    sample_free(&ss);
+    linesample_free(&ss);
     return rc;
 }

@@ -1,5 +1,6 @@
 /*
-** test_sample.c: point location (locate.c) and line sampling (sample.c).
+** test_linesample.c: point location (locate.c) and line sampling
+** (linesample.c).
 **
 ** Grids come from block_mesh with graded spacing; a point's expected
 ** cell follows from the axis coordinates (cart.x), cells being numbered
@@ -13,7 +14,7 @@
 #include "locate.h"
 #include "mem.h"
 #include "mesh.h"
-#include "sample.h"
+#include "linesample.h"
 
 /* Graded coordinates: x_i = lo + (hi-lo) s^p with p per axis. */
 static void make_grid(Mesh *m, const int n[3], const double lo[3], const double hi[3])
@@ -97,7 +98,7 @@ TEST(cells_mode_lengths)
     double a[3] = {0.01, 0.02, 0.03}, b[3] = {0.97, 0.88, 0.91};
     double len = sqrt(0.96 * 0.96 + 0.86 * 0.86 + 0.88 * 0.88);
     SampleSet s;
-    sample_cells(&L, a, b, &s);
+    linesample_cells(&L, a, b, &s);
     double sum = 0;
     int bad = 0;
     for (int i = 0; i < s.n; i++) {
@@ -113,26 +114,26 @@ TEST(cells_mode_lengths)
     for (int k = 0; k < 3; k++)
         for (int i = 1; i < m.cart.n[k]; i++) planes += m.cart.x[k][i] > a[k] && m.cart.x[k][i] < b[k];
     EXPECT(s.n == planes + 1, "%d cells crossed, expected %d", s.n, planes + 1);
-    sample_free(&s);
+    linesample_free(&s);
 
     /* A line lying in a grid plane (y on a grid line): each cell once. */
     double y = m.cart.x[1][3];
     double a2[3] = {0, y, m.cart.x[2][2]}, b2[3] = {1, y, m.cart.x[2][2]};
-    sample_cells(&L, a2, b2, &s);
+    linesample_cells(&L, a2, b2, &s);
     sum = 0;
     for (int i = 0; i < s.n; i++) sum += s.len[i];
     EXPECT(s.n == 9, "%d crossings along a grid edge, expected 9", s.n);
     NEAR(sum, 1.0, 1e-12);
-    sample_free(&s);
+    linesample_free(&s);
 
     /* Half outside: the inside part only. */
     double a3[3] = {-1, 0.5, 0.5}, b3[3] = {0.6, 0.5, 0.5};
-    sample_cells(&L, a3, b3, &s);
+    linesample_cells(&L, a3, b3, &s);
     sum = 0;
     for (int i = 0; i < s.n; i++) sum += s.len[i];
     NEAR(sum, 0.6, 1e-12);
     NEAR(s.outside, 1.0, 1e-12);
-    sample_free(&s);
+    linesample_free(&s);
     locate_free(&L);
     mesh_free(&m);
 }
@@ -144,12 +145,12 @@ TEST(uniform_mode)
     Locator L;
     locate_build(&L, &m);
     SampleSet s;
-    sample_uniform(&L, (double[]){-0.5, 0.3, 0.3}, (double[]){1, 0.3, 0.3}, 16, &s);
+    linesample_uniform(&L, (double[]){-0.5, 0.3, 0.3}, (double[]){1, 0.3, 0.3}, 16, &s);
     /* x = -0.5 + 0.1 i: i = 0..4 outside, 5 (x = 0) on the boundary. */
     EXPECT(s.n == 11 && s.nskipped == 5, "kept %d, skipped %d", s.n, s.nskipped);
     NEAR(s.dist[0], 0.5, 1e-12);
     NEAR(s.x[0], 0, 1e-12);
-    sample_free(&s);
+    linesample_free(&s);
     locate_free(&L);
     mesh_free(&m);
 }
@@ -176,8 +177,8 @@ TEST(linear_exact)
         }
     size_t n3 = 3 * (size_t)m.ncells, n9 = 3 * n3;
     double *gs = MEM_NEW(double, n3), *gv = MEM_NEW(double, n9);
-    sample_gradient(&fs, &m, gs);
-    sample_gradient(&fv, &m, gv);
+    linesample_gradient(&fs, &m, gs);
+    linesample_gradient(&fv, &m, gv);
     Locator L;
     locate_build(&L, &m);
     unsigned s = 3;
@@ -186,8 +187,8 @@ TEST(linear_exact)
         double x[3] = {-0.5 + 1.5 * rnd(&s), 0.7 * rnd(&s), 0.2 + 1.1 * rnd(&s)};
         int c = locate_cell(&L, x);
         double v, u[3];
-        sample_value(&fs, &m, gs, c, x, &v);
-        sample_value(&fv, &m, gv, c, x, u);
+        linesample_value(&fs, &m, gs, c, x, &v);
+        linesample_value(&fv, &m, gv, c, x, u);
         worst = fmax(worst, fabs(v - lin(x, 0)));
         for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(u[k] - lin(x, k)));
     }
@@ -195,7 +196,7 @@ TEST(linear_exact)
     EXPECT(worst < 1e-12, "max error %.3e", worst);
     /* Cell interpolation returns the cell value. */
     double v;
-    sample_value(&fs, &m, NULL, 17, (double[]){0, 0, 0}, &v);
+    linesample_value(&fs, &m, NULL, 17, (double[]){0, 0, 0}, &v);
     NEAR(v, fs.v[17], 0);
     free(gs);
     free(gv);

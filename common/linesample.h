@@ -1,5 +1,7 @@
 /*
-** sample.h: sampling fields along straight lines (sampleLine).
+** linesample.h: sampling fields along straight lines: where the samples
+** go and the field values there (sampleline.h reads the dictionary and
+** writes the CSV files).
 **
 ** Two ways of placing samples on the segment a-b:
 **   uniform  n points a + (b - a) i/(n - 1); points outside the mesh are
@@ -20,8 +22,8 @@
 ** 1/|d|^2: exact for a linear field.  On a 2-D mesh (empty patches) the
 ** empty direction is left out and its gradient component is zero.
 */
-#ifndef KIESEL_SAMPLE_H
-#define KIESEL_SAMPLE_H
+#ifndef KIESEL_LINESAMPLE_H
+#define KIESEL_LINESAMPLE_H
 
 #include "field.h"
 #include "locate.h"
@@ -41,17 +43,17 @@ typedef struct SampleSet {
 } SampleSet;
 
 /* npoints >= 2 (npoints 1 samples a only). */
-void sample_uniform(const Locator *L, const double a[3], const double b[3], int npoints, SampleSet *s);
-void sample_cells(const Locator *L, const double a[3], const double b[3], SampleSet *s);
-void sample_free(SampleSet *s);
+void linesample_uniform(const Locator *L, const double a[3], const double b[3], int npoints, SampleSet *s);
+void linesample_cells(const Locator *L, const double a[3], const double b[3], SampleSet *s);
+void linesample_free(SampleSet *s);
 
 /* Least-squares cell gradients: grad[(c*width + k)*3 + j] = d f_k / d x_j.
    grad has ncells*width*3 doubles. */
-void sample_gradient(const Field *f, const Mesh *m, double *grad);
+void linesample_gradient(const Field *f, const Mesh *m, double *grad);
 
 /* Value of f at x in cell c (width numbers into out); grad NULL gives the
    cell value. */
-void sample_value(const Field *f, const Mesh *m, const double *grad, int c, const double x[3],
+void linesample_value(const Field *f, const Mesh *m, const double *grad, int c, const double x[3],
                   double *out);
 
 #endif

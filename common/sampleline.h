@@ -1,6 +1,6 @@
 /*
-** lines.h: sampleLineDict: the fields and lines to sample, and the CSV
-** files of one time.
+** sampleline.h: sampleLine's dictionary (sampleLineDict): the fields and
+** lines to sample, and the CSV files of one time.
 **
 **   fields (alpha.s U);
 **   interpolation cell;            // or linear
@@ -15,10 +15,10 @@
 ** distance,x,y,z,<scalar>,<vector>_x,<vector>_y,<vector>_z[,length]
 ** (numbers in shortest round-trip form), written to <outdir>/<time>/
 ** <line>.csv, or to stdout when outdir is NULL.  The sampling itself is
-** sample.h's.  Progress text goes into a Buf: the library never prints.
+** linesample.h's.  Progress text goes into a Buf: the library never prints.
 */
-#ifndef KIESEL_LINES_H
-#define KIESEL_LINES_H
+#ifndef KIESEL_SAMPLELINE_H
+#define KIESEL_SAMPLELINE_H
 
 #include "buf.h"
 #include "dict.h"
@@ -34,7 +34,7 @@ typedef struct SampleLine {
     int reported;       /* points outside the mesh already reported */
 } SampleLine;
 
-typedef struct Lines {
+typedef struct SampleLineDict {
     const char **fields;
     const char *fields_file;  /* where `fields` is, for missing-field errors */
     int fields_line;
@@ -42,24 +42,24 @@ typedef struct Lines {
     int interp;               /* SAMPLE_CELL_VALUE or SAMPLE_LINEAR */
     SampleLine *lines;
     int nlines;
-} Lines;
+} SampleLineDict;
 
 /* Top-level keywords and the help text on each line's keywords. */
-extern const DictKey lines_keys[];
-extern const char lines_help[];
+extern const DictKey sampleline_keys[];
+extern const char sampleline_help[];
 
 /* Parses and checks the whole dictionary (s need not be initialised; it
-   is always safe to lines_free afterwards). */
-int lines_parse(Lines *s, const Dict *d, Err *e);
-void lines_free(Lines *s);
+   is always safe to sampleline_free afterwards). */
+int sampleline_parse(SampleLineDict *s, const Dict *d, Err *e);
+void sampleline_free(SampleLineDict *s);
 /* Keeps only the line called name; the error (without location) suggests
    the closest name. */
-int lines_pick(Lines *s, const char *name, Err *e);
+int sampleline_pick(SampleLineDict *s, const char *name, Err *e);
 
 /* One time being sampled: its fields (and gradients for linear
    interpolation) and output directory. */
-typedef struct LinesTime {
-    const Lines *s;
+typedef struct SampleLineTime {
+    const SampleLineDict *s;
     const Mesh *m;
     const Locator *L;
     const char *time;
@@ -67,18 +67,18 @@ typedef struct LinesTime {
     int nblocks;        /* CSV blocks on stdout in the whole run */
     Field *f;           /* nfields */
     double **grad;      /* per field, NULL for cell interpolation */
-} LinesTime;
+} SampleLineTime;
 
 /* Reads the fields of time directory <case_dir>/<time> and creates
    <outdir>/<time> (outdir NULL: CSV to stdout, each block preceded by
-   "# time T line L" when nblocks > 1).  lines_time_end is needed even
+   "# time T line L" when nblocks > 1).  sampleline_time_end is needed even
    after a failure. */
-int lines_time_begin(LinesTime *t, const Lines *s, const Mesh *m, const Locator *L, const char *case_dir,
-                     const char *time, const char *outdir, int nblocks, Err *e);
+int sampleline_time_begin(SampleLineTime *t, const SampleLineDict *s, const Mesh *m, const Locator *L,
+                          const char *case_dir, const char *time, const char *outdir, int nblocks, Err *e);
 /* Samples line l and writes its CSV; appends the report to log (also when
    the write fails).  Written one line at a time so that, with CSV on
    stdout, the caller's log interleaves with the data. */
-int lines_time_sample(LinesTime *t, SampleLine *l, Buf *log, Err *e);
-void lines_time_end(LinesTime *t);
+int sampleline_time_sample(SampleLineTime *t, SampleLine *l, Buf *log, Err *e);
+void sampleline_time_end(SampleLineTime *t);
 
 #endif

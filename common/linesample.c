@@ -1,5 +1,6 @@
 /*
-** sample.c: sample placement on a segment and cell/linear interpolation.
+** linesample.c: samples along a segment (their placement) and the cell or
+** linear interpolation of a field at them.
 **
 ** Cell crossings (cells mode) are Cyrus-Beck clips of the segment
 ** a + t (b - a) against the face planes (Cf, Sf_out) of each candidate
@@ -19,7 +20,7 @@
 ** For f linear, f_n - f_c = g.d exactly, so the solution is g itself
 ** whatever the weights.
 */
-#include "sample.h"
+#include "linesample.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -37,7 +38,7 @@ static void set_alloc(SampleSet *s, int n, int cells)
     if (cells) s->len = MEM_NEW(double, n);
 }
 
-void sample_free(SampleSet *s)
+void linesample_free(SampleSet *s)
 {
     free(s->x);
     free(s->dist);
@@ -52,7 +53,7 @@ static double seg_len(const double a[3], const double b[3])
     return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
-void sample_uniform(const Locator *L, const double a[3], const double b[3], int npoints, SampleSet *s)
+void linesample_uniform(const Locator *L, const double a[3], const double b[3], int npoints, SampleSet *s)
 {
     if (npoints < 1) npoints = 1;
     set_alloc(s, npoints, 0);
@@ -128,7 +129,7 @@ static int cmp_crossing(const void *p, const void *q)
     return (a->cell > b->cell) - (a->cell < b->cell);
 }
 
-void sample_cells(const Locator *L, const double a[3], const double b[3], SampleSet *s)
+void linesample_cells(const Locator *L, const double a[3], const double b[3], SampleSet *s)
 {
     CrossCtx x = {L, a, b, NULL, 0, 0};
     double len = seg_len(a, b);
@@ -222,13 +223,13 @@ static char *empty_faces(const Mesh *m)
 {
     char *e = MEM_NEW(char, m->nfaces - m->ninternal);
     for (int p = 0; p < m->npatches; p++) {
-        if (strcmp(m->patches[p].type, "empty")) continue;
+        if (!mesh_patch_is_empty(&m->patches[p])) continue;
         for (int i = 0; i < m->patches[p].size; i++) e[m->patches[p].start + i - m->ninternal] = 1;
     }
     return e;
 }
 
-void sample_gradient(const Field *f, const Mesh *m, double *grad)
+void linesample_gradient(const Field *f, const Mesh *m, double *grad)
 {
     int w = f->width, eax = mesh_empty_axis(m), ax[3], na = 0;
     for (int k = 0; k < 3; k++)
@@ -270,7 +271,7 @@ void sample_gradient(const Field *f, const Mesh *m, double *grad)
     free(bv);
 }
 
-void sample_value(const Field *f, const Mesh *m, const double *grad, int c, const double x[3],
+void linesample_value(const Field *f, const Mesh *m, const double *grad, int c, const double x[3],
                   double *out)
 {
     int w = f->width;
