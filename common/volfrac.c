@@ -212,12 +212,6 @@ static double tet_volume(const Geometry *g, const GeoPlane *pl, int np, const do
     return curved_volume(g, v, f, VOLFRAC_DEPTH);
 }
 
-double volfrac_tet(const Geometry *g, const double v[4][3])
-{
-    GeoPlane pl[VOLFRAC_PLANES];
-    return tet_volume(g, pl, geometry_planes(g, pl, VOLFRAC_PLANES), v);
-}
-
 int volfrac_inside(const Geometry *g, const double x[3]) { return geometry_level(g, x) <= 0; }
 
 /* ---- cells ---- */

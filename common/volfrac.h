@@ -30,9 +30,6 @@
    the mesh's geometry and cell faces (mesh_geometry, mesh_cell_faces). */
 double volfrac_cell(const Geometry *g, const Mesh *m, int c);
 
-/* Volume inside g's flow domain of the tetrahedron v[0..3] (unsigned). */
-double volfrac_tet(const Geometry *g, const double v[4][3]);
-
 /* Closed inside test, level <= 0 (OpenFOAM's cell-centre rule counts a
    centre on the surface in). */
 int volfrac_inside(const Geometry *g, const double x[3]);
