@@ -16,7 +16,8 @@
 #include "io.h"
 #include "mem.h"
 
-int gridtool_args(Args *a, const ToolInfo *t, int out_is_in, Case *c, GridTool *g, Err *e)
+/* gridtool_start's work, failures in e. */
+static int gridtool_args(Args *a, const ToolInfo *t, int out_is_in, Case *c, GridTool *g, Err *e)
 {
     const char *in = args_get(a, t, "-i"), *out = args_get(a, t, "-o");
     g->in = in ? mem_strdup(in) : io_join(a->case_dir, "constant/polyMesh");

@@ -23,18 +23,16 @@ typedef struct GridTool {
     MeshWriteOpts w;
 } GridTool;
 
-/* The options the grid tools share: -i, -o (default: the input when
-   out_is_in, else <case>/constant/polyMesh), -binary and -gzip over
-   writeFormat/writeCompression of system/controlDict (case_mesh_format).
-   With "-o -" the banner and progress go to stderr; the banner is printed
-   here, then the case is opened into c.  The -i and -o directories are
-   recovered first (args_recover). */
-int gridtool_args(Args *a, const ToolInfo *t, int out_is_in, Case *c, GridTool *g, Err *e);
 void gridtool_free(GridTool *g);
 
 /* A grid tool's start: parses the command line (no positional
-   arguments), prints the banner, opens the case and settles -i, -o and
-   the format, as gridtool_args; err_die on failure. */
+   arguments) and settles the options the grid tools share: -i, -o
+   (default: the input when out_is_in, else <case>/constant/polyMesh),
+   -binary and -gzip over writeFormat/writeCompression of
+   system/controlDict (case_mesh_format).  With "-o -" the banner and
+   progress go to stderr; the banner is printed here, then the case is
+   opened into c.  The -i and -o directories are recovered first
+   (args_recover).  err_die on failure. */
 void gridtool_start(int argc, char **argv, const ToolInfo *t, int out_is_in, Args *a, Case *c, GridTool *g);
 /* "Reading grid from DIR" and the read of the -i grid into m; err_die
    on failure. */

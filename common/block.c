@@ -50,12 +50,12 @@ const DictKey block_keys[] = {
     {"boundary", "{}", "side -> patch: xMin { name left; type wall; } ..."},
     {0}};
 
-const DictKey block_axis_keys[] = {
+static const DictKey block_axis_keys[] = {
     {"start", "0", "coordinate of the first point of the axis"},
     {"segments", NULL, "list of (end cells grading); grading = last/first cell width"},
     {0}};
 
-const DictKey block_side_keys[] = {
+static const DictKey block_side_keys[] = {
     {"name", "<side>", "patch name (the same name on several sides = one patch)"},
     {"type", "wall", "patch | wall | symmetry | symmetryPlane | empty | cyclic"},
     {"neighbourPatch", "-", "cyclic only: name of the partner patch (opposite side)"},
@@ -96,7 +96,10 @@ void block_grade(double len, int n, double g, double *t)
     t[n] = len;
 }
 
-void block_points(const BlockSpec *s, int axis, double **x, int *n)
+/* Point coordinates of one axis, scaled: returns n+1 values in a new array
+   (*x) and the cell count in *n.  The last point of each segment is its end
+   coordinate exactly. */
+static void block_points(const BlockSpec *s, int axis, double **x, int *n)
 {
     const BlockAxis *a = &s->axis[axis];
     int total = 0;

@@ -27,10 +27,9 @@ enum { BLOCK_XMIN, BLOCK_XMAX, BLOCK_YMIN, BLOCK_YMAX, BLOCK_ZMIN, BLOCK_ZMAX, B
 /* Side names in side order: "xMin", "xMax", "yMin", "yMax", "zMin", "zMax". */
 extern const char *const block_side_names[BLOCK_NSIDES];
 
-/* Keywords of blockGridDict: top level, inside x/y/z, inside a boundary side. */
+/* Keywords of blockGridDict (top level; those inside x/y/z and inside a
+   boundary side are block.c's own, described by block_help_note). */
 extern const DictKey block_keys[];
-extern const DictKey block_axis_keys[];
-extern const DictKey block_side_keys[];
 /* -help text describing the sub-dictionaries. */
 extern const char block_help_note[];
 
@@ -64,10 +63,6 @@ typedef struct BlockSpec {
 int block_read(BlockSpec *s, const Dict *d, Err *e);
 void block_free(BlockSpec *s);
 
-/* Point coordinates of one axis, scaled: returns n+1 values in a new array
-   (*x) and the cell count in *n.  The last point of each segment is its end
-   coordinate exactly. */
-void block_points(const BlockSpec *s, int axis, double **x, int *n);
 
 /* Fills m (initialised with mesh_init) with the grid of the point
    coordinates x[k][0..n[k]] (strictly increasing) and the six sides, in

@@ -45,19 +45,6 @@ static void *dup_array(const void *p, size_t bytes)
     return q;
 }
 
-void cartcells_copy(const CartCells *a, int ncells, CartCells *b)
-{
-    memset(b, 0, sizeof *b);
-    if (a->n <= 0) return;
-    size_t n = (size_t)a->n, np = (size_t)a->parent_off[ncells];
-    b->n = a->n;
-    b->role = dup_array(a->role, n * sizeof(int));
-    b->cell = dup_array(a->cell, n * sizeof(int));
-    b->vol = dup_array(a->vol, n * sizeof(double));
-    b->parent_off = dup_array(a->parent_off, ((size_t)ncells + 1) * sizeof(int));
-    b->parent = dup_array(a->parent, np * sizeof(int));
-}
-
 /* Cartesian cells of grid g, or 0 when it has none. */
 static long cart_count(const CartGrid *g)
 {

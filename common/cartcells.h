@@ -59,8 +59,6 @@ enum { CART_OUTSIDE, CART_WHOLE, CART_CUT, CART_MASTER, CART_SLAVE, CART_NROLES 
 const char *cartcells_role_name(int role);
 
 void cartcells_free(CartCells *cc);
-/* b gets copies of a's arrays (ncells: the cells a's parents index). */
-void cartcells_copy(const CartCells *a, int ncells, CartCells *b);
 
 /* From m->cell_parent with one cell per Cartesian cell (a cut grid):
    vol[c] each cell's fluid volume; whole[c] != 0 marks uncut cells, or

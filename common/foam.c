@@ -43,6 +43,12 @@ static const char banner[] =
     "|    \\\\/     M anipulation  |                                                 |\n"
     "\\*---------------------------------------------------------------------------*/\n";
 
+/* The "// * * * ... //" line that follows the header. */
+static void foam_separator(Buf *b)
+{
+    buf_puts(b, "// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //\n\n");
+}
+
 void foam_header(Buf *b, const char *cls, const char *location, const char *object,
                  int binary, const char *note)
 {
@@ -57,11 +63,6 @@ void foam_header(Buf *b, const char *cls, const char *location, const char *obje
     buf_printf(b, "    object      %s;\n", object);
     buf_puts(b, "}\n");
     foam_separator(b);
-}
-
-void foam_separator(Buf *b)
-{
-    buf_puts(b, "// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //\n\n");
 }
 
 void foam_footer(Buf *b)

@@ -22,8 +22,7 @@
    (written as location "0.5"; when given).  note may be NULL. */
 void foam_header(Buf *b, const char *cls, const char *location, const char *object,
                  int binary, const char *note);
-/* The "// * * * ... //" separator line and the end line "// *** //". */
-void foam_separator(Buf *b);
+/* The end line "// *** //". */
 void foam_footer(Buf *b);
 
 /* Shortest round-trip decimal (precision <= 0) or %.{precision}g.

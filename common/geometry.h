@@ -47,6 +47,13 @@
 ** 2-D grids: geometry_flatten(g, axis, c) makes every query use the
 ** section of the geometry by the plane x[axis] = c, extruded along axis
 ** (a sphere centred on the plane becomes a disc of the same radius).
+**
+** This header is the public face of three files: csg.c (the tree and
+** every query on the domain), geometrydict.c (reading the dictionary)
+** and geometry_sample.c (points on the boundary); csg.h is the tree they
+** share.  setFields uses the same Geometry for its regions (one solid,
+** flow inside: geometry_of_shape, geometry_parse_solid), with the cell
+** volume fractions of volfrac.h computed from geometry_level.
 */
 #ifndef KIESEL_GEOMETRY_H
 #define KIESEL_GEOMETRY_H
@@ -54,8 +61,9 @@
 #include "dict.h"
 #include "err.h"
 
-typedef struct GeoNode GeoNode;   /* private to geometry.c */
+typedef struct GeoNode GeoNode;   /* csg.h */
 struct Cad;
+struct Shape;
 struct TriSurf;
 
 /* One crossing of a segment with the domain boundary. */
@@ -98,6 +106,18 @@ extern const char geometry_help_note[];
 void geometry_init(Geometry *g);
 void geometry_free(Geometry *g);
 
+/* A geometry of one solid, flow inside: the shape s (copied; its poly
+   array then belongs to g), named `name` for messages. */
+void geometry_of_shape(Geometry *g, const struct Shape *s, const char *name);
+
+/* A geometry of one solid, flow inside, from one shape dictionary d (its
+   `shape` keyword and the kind's, transforms and CSG operands as in a
+   surface entry of geometryDict, without type and flow); the keywords in
+   extra (NULL: none) are allowed at d's top level for the caller to
+   read.  File names inside are relative to case_dir. */
+int geometry_parse_solid(Geometry *g, const Dict *d, const char *name, const char *case_dir, const DictKey *extra,
+                         Err *e);
+
 /* Reads <case>/system/geometryDict (or `path` when not NULL); file names
    inside (stl, cad) are relative to the case directory. */
 int geometry_read(Geometry *g, const char *case_dir, const char *path, Err *e);
@@ -128,6 +148,25 @@ void geometry_normal(const Geometry *g, int leaf, const double x[3], double n[3]
 int geometry_nearest_leaf(const Geometry *g, const double x[3]);
 /* The same among the leaves of one surface (surface < 0: all leaves). */
 int geometry_nearest_leaf_of(const Geometry *g, int surface, const double x[3]);
+
+/* A level function of the flow domain: negative inside, positive
+   outside, zero on its boundary, and 1-Lipschitz (|level(x) - level(y)|
+   <= |x - y|), so |level| never exceeds the distance to the boundary
+   (built on shape_bound; the distance itself for an untransformed
+   sphere or half-space). */
+double geometry_level(const Geometry *g, const double x[3]);
+
+/* A half-space n.x <= d. */
+typedef struct GeoPlane {
+    double n[3], d;
+} GeoPlane;
+
+/* When the domain is a convex polytope (one surface, flow inside, a box,
+   a half-space or an intersection of them, any affine maps): writes its
+   bounding half-spaces, in global coordinates (in 2-D: of the section,
+   the flat-axis term moved into d; one with n = 0 and d < 0 holds
+   nowhere) and returns their count (at most max); -1 otherwise. */
+int geometry_planes(const Geometry *g, GeoPlane *pl, int max);
 
 /* Exact volume of the flow domain inside the box lo..hi when it is known
    in closed form (one surface, one primitive, entirely inside the box,

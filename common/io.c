@@ -58,7 +58,8 @@ static int read_rest(FILE *f, const char *name, Buf *out, size_t hint, Err *e)
     return 0;
 }
 
-int io_read_stream(void *fp, const char *name, Buf *out, Err *e)
+/* Reads all of a FILE* (already open) into out. */
+static int io_read_stream(void *fp, const char *name, Buf *out, Err *e)
 {
     buf_clear(out);
     return read_rest(fp, name, out, 0, e);

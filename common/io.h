@@ -26,8 +26,6 @@
    left empty and freed, so the caller need not free it. */
 int io_read_file(const char *path, Buf *out, char **found_path, Err *e);
 
-/* Reads all of a FILE* (already open) into out. */
-int io_read_stream(void *fp, const char *name, Buf *out, Err *e);
 
 /* A file's bytes for reading: either a read-only mapping of the file
    (map != NULL) or a Buf holding them.  p[0..n) is the content (inflated

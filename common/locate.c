@@ -133,7 +133,9 @@ void locate_free(Locator *L)
     memset(L, 0, sizeof *L);
 }
 
-double locate_violation(const Locator *L, int c, const double x[3])
+/* Largest (x - Cf).n_out over the faces of cell c, divided by the cell
+   size: <= 0 inside a convex cell, > 0 outside. */
+static double locate_violation(const Locator *L, int c, const double x[3])
 {
     const Mesh *m = L->m;
     double worst = -INFINITY;

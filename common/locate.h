@@ -35,9 +35,6 @@ void locate_free(Locator *L);
 /* The cell containing x, or -1 when x is outside the mesh. */
 int locate_cell(const Locator *L, const double x[3]);
 
-/* Largest (x - Cf).n_out over the faces of cell c, divided by the cell
-   size: <= 0 inside a convex cell, > 0 outside. */
-double locate_violation(const Locator *L, int c, const double x[3]);
 
 /* Calls fn(cell, ctx) once for every cell whose bounding box meets the
    segment a-b (candidates for line crossings), in ascending cell order. */

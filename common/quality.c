@@ -186,7 +186,9 @@ double quality_boundary_skewness(const Mesh *m, int f, const double cown[3])
     return quality_skewness(m, f, cown, NULL);
 }
 
-void quality_cell(const Mesh *m, int c, const int empty[3], double *open, double *aspect)
+/* Closedness |sum S| / sum |S| (outward S) and aspect ratio of cell c;
+   empty[k] marks empty directions (NULL: none). */
+static void quality_cell(const Mesh *m, int c, const int empty[3], double *open, double *aspect)
 {
     double sum[3] = {0, 0, 0}, mag[3] = {0, 0, 0}, surf = 0;
     for (int i = m->cell_off[c]; i < m->cell_off[c + 1]; i++) {
@@ -222,7 +224,8 @@ double quality_aspect(const double mag[3], double vol, const int empty[3])
     return ar;
 }
 
-void quality_empty_dirs(const Mesh *m, int empty[3])
+/* Directions normal to the faces of empty patches (OpenFOAM's geometricD). */
+static void quality_empty_dirs(const Mesh *m, int empty[3])
 {
     empty[0] = empty[1] = empty[2] = 0;
     for (int p = 0; p < m->npatches; p++) {

@@ -119,15 +119,10 @@ void quality_face_measures(const Mesh *m, double *skewness, double *cosn);
 double quality_skewness(const Mesh *m, int f, const double cown[3], const double cnei[3]);
 /* Skewness of boundary face f of the cell with centre cown. */
 double quality_boundary_skewness(const Mesh *m, int f, const double cown[3]);
-/* Closedness |sum S| / sum |S| (outward S) and aspect ratio of cell c;
-   empty[k] marks empty directions (NULL: none). */
-void quality_cell(const Mesh *m, int c, const int empty[3], double *open, double *aspect);
 /* The aspect ratio of quality_cell from a cell's per-axis sums of |S_k|
    over its faces and its volume (for cells assembled from parts, such as
    merged clusters, whose faces are known without a mesh). */
 double quality_aspect(const double mag[3], double vol, const int empty[3]);
-/* Directions normal to the faces of empty patches (OpenFOAM's geometricD). */
-void quality_empty_dirs(const Mesh *m, int empty[3]);
 
 /* Computes every measure.  Computes the cell faces and the geometry of m
    first when they are missing. */

@@ -7,6 +7,14 @@
 ** gets one index (SetValue.field) at its first use; setting it once as a
 ** scalar and once as a vector is an error there and then.
 **
+** Regions are solids of the one library of primitives cutCells uses: each
+** is a Geometry of one surface, flow inside (geometry.h), and its cells'
+** volume fractions come from volfrac.h.  The OpenFOAM-style types
+** (boxToCell, sphereToCell, ...) keep their keywords and are built with
+** geometry_of_shape; shapeToCell takes any geometryDict shape, CSG and
+** transforms included, through geometry_parse_solid.  A type's checks
+** speak of its own keywords (p1, p2) before shape_check's.
+**
 ** Application order is the dictionary's: defaults in every cell, then the
 ** regions one after the other, each blending into what the previous ones
 ** left (see setfields.h).  Fields are read in full before the first one is
@@ -16,6 +24,8 @@
 
 #include "io.h"
 #include "mem.h"
+#include "shape.h"
+#include "volfrac.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -36,10 +46,16 @@ const char setfields_help[] =
     "  cylinderToCell   p1 (x y z); p2 (x y z); radius r;        (finite, flat ends)\n"
     "  coneToCell       p1 (x y z); p2 (x y z); radius1 r1; radius2 r2;\n"
     "  halfSpaceToCell  point (x y z); normal (x y z);  (inside: (x - point).normal <= 0)\n"
-    "On a 2-D mesh (empty patches) each shape is its section through its centre,\n"
-    "extruded: a sphere, or a cylinder along the empty axis, sets a disc.\n";
+    "  shapeToCell      shape <kind>; and the kind's keywords: any geometryDict shape\n"
+    "                   (halfSpace box sphere cylinder cone torus polygon surface stl\n"
+    "                   obj cad union intersection difference; operands as named\n"
+    "                   sub-dictionaries; scale, rotate, translate), keywords below\n"
+    "On a 2-D mesh (empty patches) each shape is its section through its centre\n"
+    "(shapeToCell: through the mesh's mid-plane), extruded: a sphere, or a cylinder\n"
+    "along the empty axis, sets a disc.\n";
 
-/* The region types: dictionary name, shape, keywords. */
+/* The region types: dictionary name, shape kind (-1: shapeToCell, any
+   geometryDict shape), keywords. */
 typedef struct RegionType {
     const char *name;
     int kind;
@@ -47,20 +63,21 @@ typedef struct RegionType {
 } RegionType;
 
 static const RegionType region_types[] = {
-    {"boxToCell", REGION_BOX,
+    {"boxToCell", SHAPE_BOX,
      {{"box", NULL, "(min) (max) corners"}, {"fieldValues", NULL, "values"}, {"fractional", "yes", "volume fraction"}, {0}}},
-    {"sphereToCell", REGION_SPHERE,
+    {"sphereToCell", SHAPE_SPHERE,
      {{"centre", NULL, "centre"}, {"radius", NULL, "radius"}, {"fieldValues", NULL, "values"},
       {"fractional", "yes", "volume fraction"}, {0}}},
-    {"cylinderToCell", REGION_CYLINDER,
+    {"cylinderToCell", SHAPE_CYLINDER,
      {{"p1", NULL, "axis start"}, {"p2", NULL, "axis end"}, {"radius", NULL, "radius"}, {"fieldValues", NULL, "values"},
       {"fractional", "yes", "volume fraction"}, {0}}},
-    {"coneToCell", REGION_CONE,
+    {"coneToCell", SHAPE_CONE,
      {{"p1", NULL, "axis start"}, {"p2", NULL, "axis end"}, {"radius1", NULL, "radius at p1"},
       {"radius2", NULL, "radius at p2"}, {"fieldValues", NULL, "values"}, {"fractional", "yes", "volume fraction"}}},
-    {"halfSpaceToCell", REGION_HALFSPACE,
+    {"halfSpaceToCell", SHAPE_HALFSPACE,
      {{"point", NULL, "point on the plane"}, {"normal", NULL, "outward normal"}, {"fieldValues", NULL, "values"},
       {"fractional", "yes", "volume fraction"}, {0}}},
+    {"shapeToCell", -1, {{"fieldValues", NULL, "values"}, {"fractional", "yes", "volume fraction"}, {0}}},
 };
 enum { NTYPES = sizeof region_types / sizeof region_types[0] };
 
@@ -172,7 +189,7 @@ static int entry_values(SetFields *s, const Dict *d, const char *key, int requir
 }
 
 /* box (x y z) (x y z); */
-static int read_box(const Dict *d, Region *r, Err *e)
+static int read_box(const Dict *d, Shape *r, Err *e)
 {
     const DictEntry *en = dict_find(d, "box");
     if (!en) return err_set(e, d->file, d->line, "keyword 'box' missing in dictionary '%s'", d->name);
@@ -188,17 +205,17 @@ static int read_box(const Dict *d, Region *r, Err *e)
     return 0;
 }
 
-static int read_shape(const Dict *d, Region *r, Err *e)
+static int read_shape(const Dict *d, Shape *r, Err *e)
 {
     switch (r->kind) {
-    case REGION_BOX:
+    case SHAPE_BOX:
         return read_box(d, r, e);
-    case REGION_SPHERE:
+    case SHAPE_SPHERE:
         return dict_vector(d, "centre", r->p, e) || dict_scalar(d, "radius", &r->r1, e) ? -1 : 0;
-    case REGION_CYLINDER:
+    case SHAPE_CYLINDER:
         return dict_vector(d, "p1", r->p, e) || dict_vector(d, "p2", r->q, e) || dict_scalar(d, "radius", &r->r1, e)
                    ? -1 : 0;
-    case REGION_CONE:
+    case SHAPE_CONE:
         return dict_vector(d, "p1", r->p, e) || dict_vector(d, "p2", r->q, e) ||
                        dict_scalar(d, "radius1", &r->r1, e) || dict_scalar(d, "radius2", &r->r2, e)
                    ? -1 : 0;
@@ -226,23 +243,66 @@ static const RegionType *region_type(const DictNode *t, Err *e)
     return NULL;
 }
 
-static int parse_region(SetFields *s, const RegionType *rt, const Dict *d, SetRegion *sr, Err *e)
+/* The checks of the ToCell types, in their keywords' terms; NULL when
+   shape_check may go on. */
+static const char *tocell_check(const Shape *r)
+{
+    double a[3] = {r->q[0] - r->p[0], r->q[1] - r->p[1], r->q[2] - r->p[2]};
+    int axis = a[0] != 0 || a[1] != 0 || a[2] != 0;
+    switch (r->kind) {
+    case SHAPE_BOX:
+        for (int k = 0; k < 3; k++)
+            if (!(r->q[k] >= r->p[k])) return "box: the first corner must be the minimum and the second the maximum";
+        return NULL;
+    case SHAPE_SPHERE:
+        return r->r1 > 0 ? NULL : "radius must be positive";
+    case SHAPE_CYLINDER:
+        if (!(r->r1 > 0)) return "radius must be positive";
+        return axis ? NULL : "p1 and p2 must differ";
+    case SHAPE_CONE:
+        if (!(r->r1 >= 0 && r->r2 >= 0)) return "radius1 and radius2 must not be negative";
+        if (!(r->r1 > 0 || r->r2 > 0)) return "radius1 or radius2 must be positive";
+        return axis ? NULL : "p1 and p2 must differ";
+    default:
+        return r->q[0] != 0 || r->q[1] != 0 || r->q[2] != 0 ? NULL : "normal must be a non-zero vector";
+    }
+}
+
+/* The region's solid: a ToCell type's shape, or shapeToCell's. */
+static int region_solid(const RegionType *rt, const Dict *d, const char *case_dir, SetRegion *sr, Err *e)
+{
+    if (rt->kind < 0) return geometry_parse_solid(&sr->solid, d, rt->name, case_dir, rt->keys, e);
+    Shape sh;
+    memset(&sh, 0, sizeof sh);
+    sh.kind = rt->kind;
+    if (dict_check_keys(d, rt->keys, e) || read_shape(d, &sh, e)) return -1;
+    const char *msg = tocell_check(&sh);
+    if (!msg) msg = shape_check(&sh);
+    if (msg) return err_set(e, d->file, d->line, "%s: %s", rt->name, msg);
+    geometry_of_shape(&sr->solid, &sh, rt->name);
+    /* 2-D: the section through the shape's centre (box middle,
+       cylinder/cone axis middle, sphere centre, half-space point) */
+    int mid = sh.kind == SHAPE_BOX || sh.kind == SHAPE_CYLINDER || sh.kind == SHAPE_CONE;
+    for (int k = 0; k < 3; k++) sr->centre[k] = mid ? 0.5 * (sh.p[k] + sh.q[k]) : sh.p[k];
+    sr->centred = 1;
+    return 0;
+}
+
+static int parse_region(SetFields *s, const RegionType *rt, const Dict *d, const char *case_dir, SetRegion *sr,
+                        Err *e)
 {
     memset(sr, 0, sizeof *sr);
     sr->type = rt->name;
     sr->file = d->file;
     sr->line = d->line;
-    sr->shape.kind = rt->kind;
-    if (dict_check_keys(d, rt->keys, e) || read_shape(d, &sr->shape, e) ||
-        dict_switch_or(d, "fractional", 1, &sr->fractional, e) ||
+    if (region_solid(rt, d, case_dir, sr, e)) return -1;
+    if (dict_switch_or(d, "fractional", 1, &sr->fractional, e) ||
         entry_values(s, d, "fieldValues", 1, &sr->vals, &sr->nvals, e))
         return -1;
-    const char *msg = region_check(&sr->shape);
-    if (msg) return err_set(e, d->file, d->line, "%s: %s", rt->name, msg);
     return 0;
 }
 
-int setfields_parse(SetFields *s, const Dict *d, Err *e)
+int setfields_parse(SetFields *s, const Dict *d, const char *case_dir, Err *e)
 {
     memset(s, 0, sizeof *s);
     if (dict_check_keys(d, setfields_keys, e)) return -1;
@@ -261,7 +321,7 @@ int setfields_parse(SetFields *s, const Dict *d, Err *e)
             return err_set(e, l->items[i]->file, l->items[i]->line, "%s: expected a dictionary { ... } after it",
                            rt->name);
         SetRegion *sr = &s->regions[s->nregions++];
-        if (parse_region(s, rt, l->items[i + 1]->dict, sr, e)) return -1;
+        if (parse_region(s, rt, l->items[i + 1]->dict, case_dir, sr, e)) return -1;
         sr->line = l->items[i]->line;
     }
     return 0;
@@ -269,7 +329,10 @@ int setfields_parse(SetFields *s, const Dict *d, Err *e)
 
 void setfields_free(SetFields *s)
 {
-    for (int i = 0; i < s->nregions; i++) free(s->regions[i].vals);
+    for (int i = 0; i < s->nregions; i++) {
+        free(s->regions[i].vals);
+        geometry_free(&s->regions[i].solid);
+    }
     free(s->regions);
     free(s->defaults);
     free(s->fields);
@@ -286,7 +349,13 @@ void setfields_on_mesh(SetFields *s, const Mesh *m, Buf *log)
     if (flat >= 0)
         buf_printf(log, "; 2-D (empty along %c): each shape is its section through its centre, extruded", "xyz"[flat]);
     buf_puts(log, "\n\n");
-    for (int r = 0; r < s->nregions; r++) region_flatten(&s->regions[r].shape, flat);
+    if (flat < 0) return;
+    double lo[3], hi[3];
+    mesh_bounds(m, lo, hi);
+    for (int r = 0; r < s->nregions; r++) {
+        SetRegion *sr = &s->regions[r];
+        geometry_flatten(&sr->solid, flat, sr->centred ? sr->centre[flat] : 0.5 * (lo[flat] + hi[flat]));
+    }
 }
 
 /* ---- applying ---- */
@@ -307,14 +376,16 @@ static void put_values(Buf *log, const SetValue *fv, int n)
     }
 }
 
-/* The shape's own volume, to compare with the volume set: on a 2-D mesh
-   its section times the mesh thickness. */
-static double shape_volume(const Region *r, const Mesh *m)
+/* The solid's own volume when known in closed form (one primitive), to
+   compare with the volume set: on a 2-D mesh its section times the mesh
+   thickness; NAN otherwise. */
+static double solid_volume(const Geometry *g, const Mesh *m)
 {
-    if (!r->flat) return region_volume(r);
     double lo[3], hi[3];
     mesh_bounds(m, lo, hi);
-    return region_flat_area(r) * (hi[r->flat_axis] - lo[r->flat_axis]);
+    for (int k = 0; k < 3; k++)
+        if (k != g->flat_axis) lo[k] = -INFINITY, hi[k] = INFINITY;
+    return geometry_exact_volume(g, lo, hi);
 }
 
 static void apply_region(const SetRegion *r, const Mesh *m, Field *fields, Buf *log)
@@ -322,8 +393,8 @@ static void apply_region(const SetRegion *r, const Mesh *m, Field *fields, Buf *
     int touched = 0, partial = 0;
     double vol = 0;
     for (int c = 0; c < m->ncells; c++) {
-        double f = r->fractional ? region_fraction(&r->shape, m, c)
-                                 : (double)region_inside(&r->shape, m->cell_centre + 3 * c);
+        double f = r->fractional ? volfrac_cell(&r->solid, m, c)
+                                 : (double)volfrac_inside(&r->solid, m->cell_centre + 3 * c);
         if (f <= 0) continue;
         touched++;
         partial += f < 1;
@@ -332,8 +403,9 @@ static void apply_region(const SetRegion *r, const Mesh *m, Field *fields, Buf *
     }
     buf_printf(log, "    %s (%s:%d): %d cells touched, %d of them partly; volume set %.10g", r->type, r->file,
                r->line, touched, partial, vol);
-    double exact = shape_volume(&r->shape, m);
-    if (isfinite(exact)) buf_printf(log, " (shape %s %.10g)", r->shape.flat ? "section x thickness" : "volume", exact);
+    double exact = solid_volume(&r->solid, m);
+    if (isfinite(exact))
+        buf_printf(log, " (shape %s %.10g)", r->solid.flat_axis >= 0 ? "section x thickness" : "volume", exact);
     buf_putc(log, '\n');
     put_values(log, r->vals, r->nvals);
 }

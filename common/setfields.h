@@ -1,15 +1,17 @@
 /*
 ** setfields.h: setFieldsDict: default values and regions, parsed into
-** shapes (region.h) with the values they set, and applied to the vol
-** fields of a time directory.
+** solids (geometry.h, the primitives geometryDict uses) with the values
+** they set, and applied to the vol fields of a time directory.
 **
 **   defaultFieldValues ( volScalarFieldValue alpha.s 0 ... );
-**   regions ( sphereToCell { centre (..); radius ..; fieldValues (..); } ... );
+**   regions ( sphereToCell { centre (..); radius ..; fieldValues (..); }
+**             shapeToCell { shape difference; a { shape box; ... }
+**                           b { shape sphere; ... } fieldValues (..); } ... );
 **
 ** Every cell first gets the default values; then each region, in order,
 ** blends its values in with the cell's volume fraction f inside the shape:
 ** v = (1 - f) v + f v_region (`fractional no;` uses OpenFOAM's rule: f = 1
-** when the cell centre is inside, else 0).
+** when the cell centre is inside, else 0); f is volfrac.h's.
 **
 ** The whole dictionary is checked and every field read before anything is
 ** written, and each field file is replaced atomically, so a bad dictionary
@@ -24,7 +26,7 @@
 #include "err.h"
 #include "field.h"
 #include "mesh.h"
-#include "region.h"
+#include "geometry.h"
 
 /* One "volScalarFieldValue NAME value" item. */
 typedef struct SetValue {
@@ -38,7 +40,9 @@ typedef struct SetValue {
 
 typedef struct SetRegion {
     const char *type;  /* "sphereToCell" */
-    Region shape;
+    Geometry solid;    /* one surface, flow inside */
+    int centred;       /* 2-D: cut through centre, not the mesh's mid-plane */
+    double centre[3];
     int fractional;
     SetValue *vals;
     int nvals;
@@ -63,14 +67,17 @@ extern const DictKey setfields_keys[];
 extern const char setfields_help[];
 
 /* Parses and checks the whole dictionary (s need not be initialised; it
-   is always safe to setfields_free afterwards).  Names point into d. */
-int setfields_parse(SetFields *s, const Dict *d, Err *e);
+   is always safe to setfields_free afterwards).  Names point into d;
+   file names in shapeToCell regions (stl, cad) are relative to case_dir
+   (NULL: the working directory). */
+int setfields_parse(SetFields *s, const Dict *d, const char *case_dir, Err *e);
 void setfields_free(SetFields *s);
 
-/* Fits the shapes to the mesh (with geometry): on a 2-D mesh (one cell
-   thick between empty patches) each shape is replaced by its section
-   through its centre, extruded (region_flatten), so spheres and cylinders
-   along the empty axis set discs.  Appends the "Mesh: ..." report. */
+/* Fits the solids to the mesh (with geometry): on a 2-D mesh (one cell
+   thick between empty patches) each solid is replaced by its section
+   through its centre (shapeToCell: through the mesh's mid-plane),
+   extruded (geometry_flatten), so spheres and cylinders along the empty
+   axis set discs.  Appends the "Mesh: ..." report. */
 void setfields_on_mesh(SetFields *s, const Mesh *m, Buf *log);
 
 /* Reads the fields of <case_dir>/<time>, sets the defaults and regions

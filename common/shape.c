@@ -1,12 +1,13 @@
 /*
 ** shape.c: analytic solids with exact level, crossing, nearest-point,
-** normal, volume and area queries.  See shape.h for the contract.
+** normal, volume and area queries.  See shape.h for the contract; surface
+** sampling is shape_sample.c, and the helpers both use are shape_impl.h.
 **
 ** Level functions.  Every kind's level is its exact signed distance
 ** (negative inside).  The box, the finite cylinder and the extruded
 ** polygon are products (of intervals; disc x interval; polygon x
 ** interval), whose signed distance combines the factors' (the larger one
-** inside, the Euclidean norm of the positive ones outside); the polygon's
+** inside, the Euclidean shape_norm of the positive ones outside); the polygon's
 ** own is the distance to its nearest edge, signed by the winding number.
 ** The cone works in its (rho, s) half-plane, where its section is a
 ** convex trapezoid: the largest face-line distance inside, the distance
@@ -52,6 +53,7 @@
 ** rule itself.
 */
 #include "shape.h"
+#include "shape_impl.h"
 
 #include "mem.h"
 
@@ -83,12 +85,6 @@ int shape_kind(const char *name)
 
 /* ---- small vector helpers ---- */
 
-static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static double norm(const double a[3]) { return sqrt(dot(a, a)); }
-static void sub(const double a[3], const double b[3], double c[3])
-{
-    for (int k = 0; k < 3; k++) c[k] = a[k] - b[k];
-}
 static void along(const double a[3], const double d[3], double t, double x[3])
 {
     for (int k = 0; k < 3; k++) x[k] = a[k] + t * d[k];
@@ -97,13 +93,13 @@ static double clamp(double v, double lo, double hi) { return v < lo ? lo : v > h
 
 /* A unit vector perpendicular to unit u (used where the radial direction
    of an axisymmetric shape is undefined: points on its axis). */
-static void perp_unit(const double u[3], double e[3])
+void shape_perp_unit(const double u[3], double e[3])
 {
     int k = fabs(u[0]) <= fabs(u[1]) && fabs(u[0]) <= fabs(u[2]) ? 0 : fabs(u[1]) <= fabs(u[2]) ? 1 : 2;
     double ek[3] = {0, 0, 0};
     ek[k] = 1;
     for (int i = 0; i < 3; i++) e[i] = ek[i] - u[k] * u[i];
-    double n = norm(e);
+    double n = shape_norm(e);
     for (int i = 0; i < 3; i++) e[i] /= n;
 }
 
@@ -126,30 +122,30 @@ typedef struct Axi {
     double e[3];    /* unit radial direction of x (any when rho = 0) */
 } Axi;
 
-static void axi_frame(const Shape *s, double u[3], double *h)
+void shape_axi_frame(const Shape *s, double u[3], double *h)
 {
     if (s->kind == SHAPE_TORUS) {
         for (int k = 0; k < 3; k++) u[k] = s->q[k];
         *h = 0;
         return;
     }
-    sub(s->q, s->p, u);
-    *h = norm(u);
+    shape_sub(s->q, s->p, u);
+    *h = shape_norm(u);
     for (int k = 0; k < 3; k++) u[k] /= *h;
 }
 
 static void axi(const Shape *s, const double x[3], Axi *A)
 {
     double w[3];
-    axi_frame(s, A->u, &A->h);
-    sub(x, s->p, w);
-    A->s = dot(w, A->u);
+    shape_axi_frame(s, A->u, &A->h);
+    shape_sub(x, s->p, w);
+    A->s = shape_dot(w, A->u);
     for (int k = 0; k < 3; k++) A->e[k] = w[k] - A->s * A->u[k];
-    A->rho = norm(A->e);
+    A->rho = shape_norm(A->e);
     if (A->rho > 0)
         for (int k = 0; k < 3; k++) A->e[k] /= A->rho;
     else
-        perp_unit(A->u, A->e);
+        shape_perp_unit(A->u, A->e);
 }
 
 /* Point p + s u + rho e. */
@@ -210,17 +206,6 @@ static int argmax3(const double f[3])
 
 /* ---- the polygon's plane ---- */
 
-static int poly_u(const Shape *s) { return (s->axis + 1) % 3; }
-static int poly_v(const Shape *s) { return (s->axis + 2) % 3; }
-
-/* What the polygon's plane knows about a point (u, v). */
-typedef struct Poly2 {
-    int inside;     /* winding number != 0 */
-    double dist;    /* distance to the boundary */
-    double sd;      /* signed distance (negative inside) */
-    int edge;       /* nearest edge (ties: most facing, then first) */
-    double cu, cv;  /* nearest boundary point */
-} Poly2;
 
 /* Outward signed distance of (u, v) to the line of edge i (CCW polygon:
    the interior is on the left). */
@@ -250,7 +235,7 @@ static int poly_winding(const Shape *s, double u, double v)
    their signed line distance: from outside the edge x lies farthest
    beyond, from inside the one it lies farthest behind, i.e. the normal
    best aligned with the way from the surface to x. */
-static void poly2(const Shape *s, double u, double v, Poly2 *r)
+void shape_poly2(const Shape *s, double u, double v, ShapePoly2 *r)
 {
     int n = s->npoly;
     double best = INFINITY, bestline = -INFINITY;
@@ -270,13 +255,13 @@ static void poly2(const Shape *s, double u, double v, Poly2 *r)
 }
 
 /* Outward unit normal of polygon wall i in 3-D. */
-static void poly_wall_normal(const Shape *s, int i, double n[3])
+void shape_poly_wall_normal(const Shape *s, int i, double n[3])
 {
     const double *P = s->poly + 2 * i, *Q = s->poly + 2 * ((i + 1) % s->npoly);
     double eu = Q[0] - P[0], ev = Q[1] - P[1], L = sqrt(eu * eu + ev * ev);
     n[s->axis] = 0;
-    n[poly_u(s)] = ev / L;
-    n[poly_v(s)] = -eu / L;
+    n[shape_poly_u(s)] = ev / L;
+    n[shape_poly_v(s)] = -eu / L;
 }
 
 /* Signed distance to the lo/hi caps along the axis (-INFINITY when
@@ -320,8 +305,8 @@ static double level_torus(const Shape *s, const double x[3])
 
 static double level_polygon(const Shape *s, const double x[3])
 {
-    Poly2 P;
-    poly2(s, x[poly_u(s)], x[poly_v(s)], &P);
+    ShapePoly2 P;
+    shape_poly2(s, x[shape_poly_u(s)], x[shape_poly_v(s)], &P);
     return combine2(P.sd, poly_axial(s, x[s->axis]));
 }
 
@@ -330,12 +315,12 @@ double shape_level(const Shape *s, const double x[3])
     double w[3];
     switch (s->kind) {
     case SHAPE_HALFSPACE:
-        sub(x, s->p, w);
-        return dot(w, s->q);
+        shape_sub(x, s->p, w);
+        return shape_dot(w, s->q);
     case SHAPE_BOX: return level_box(s, x);
     case SHAPE_SPHERE:
-        sub(x, s->p, w);
-        return norm(w) - s->r1;
+        shape_sub(x, s->p, w);
+        return shape_norm(w) - s->r1;
     case SHAPE_CYLINDER: {
         Axi A;
         axi(s, x, &A);
@@ -350,6 +335,48 @@ double shape_level(const Shape *s, const double x[3])
 }
 
 int shape_inside(const Shape *s, const double x[3]) { return shape_level(s, x) < 0; }
+
+/* ---- bound (the volume integrator's level, volfrac.c) ----
+**
+** Slab distances and the cone's side-line distance, without the
+** Euclidean corner terms and nearest-point searches of shape_level; the
+** arithmetic is the one setFields' shapes have always used (axial
+** coordinate t = (x - p).(q - p) / L, rho^2 = |x - p|^2 - t^2), so the
+** fields it sets stay the same to the last bit.
+*/
+
+static void bound_axis(const Shape *s, const double x[3], double *t, double *rho, double *len)
+{
+    double a[3], d[3];
+    shape_sub(s->q, s->p, a);
+    shape_sub(x, s->p, d);
+    double L = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    double sc = (d[0] * a[0] + d[1] * a[1] + d[2] * a[2]) / L;
+    double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - sc * sc;
+    *t = sc;
+    *rho = sqrt(dd > 0 ? dd : 0);
+    *len = L;
+}
+
+double shape_bound(const Shape *s, const double x[3])
+{
+    double t, rho, L, phi = -INFINITY;
+    switch (s->kind) {
+    case SHAPE_BOX:
+        for (int k = 0; k < 3; k++) phi = fmax(phi, fmax(s->p[k] - x[k], x[k] - s->q[k]));
+        return phi;
+    case SHAPE_CYLINDER:
+        bound_axis(s, x, &t, &rho, &L);
+        return s->infinite ? rho - s->r1 : fmax(rho - s->r1, fmax(-t, t - L));
+    case SHAPE_CONE: {
+        bound_axis(s, x, &t, &rho, &L);
+        double k = (s->r2 - s->r1) / L;
+        /* rho - R(t) has gradient norm sqrt(1 + k^2) */
+        return fmax((rho - (s->r1 + k * t)) / sqrt(1 + k * k), fmax(-t, t - L));
+    }
+    default: return shape_level(s, x);
+    }
+}
 
 /* ---- nearest point and normal ---- */
 
@@ -374,8 +401,8 @@ static void near_box(const Shape *s, const double x[3], double c[3], double n[3]
 static void near_sphere(const Shape *s, const double x[3], double c[3], double n[3])
 {
     double w[3];
-    sub(x, s->p, w);
-    double r = norm(w);
+    shape_sub(x, s->p, w);
+    double r = shape_norm(w);
     for (int k = 0; k < 3; k++) n[k] = r > 0 ? w[k] / r : k == 0;
     for (int k = 0; k < 3; k++) c[k] = s->p[k] + s->r1 * n[k];
 }
@@ -424,18 +451,18 @@ static void near_torus(const Shape *s, const double x[3], double c[3], double n[
     double T[3], w[3];
     axi(s, x, &A);
     axi_point(s, &A, 0, s->r1, T);
-    sub(x, T, w);
-    double r = norm(w);
+    shape_sub(x, T, w);
+    double r = shape_norm(w);
     for (int k = 0; k < 3; k++) n[k] = r > 0 ? w[k] / r : A.e[k];
     for (int k = 0; k < 3; k++) c[k] = T[k] + s->r2 * n[k];
 }
 
 static void near_polygon(const Shape *s, const double x[3], double c[3], double n[3])
 {
-    Poly2 P;
-    int a = s->axis, iu = poly_u(s), iv = poly_v(s);
+    ShapePoly2 P;
+    int a = s->axis, iu = shape_poly_u(s), iv = shape_poly_v(s);
     double z = x[a];
-    poly2(s, x[iu], x[iv], &P);
+    shape_poly2(s, x[iu], x[iv], &P);
     double sa = poly_axial(s, z);
     int cap = s->lo - z > z - s->hi ? -1 : 1;   /* the cap sa refers to */
     for (int k = 0; k < 3; k++) c[k] = x[k];
@@ -443,7 +470,7 @@ static void near_polygon(const Shape *s, const double x[3], double c[3], double 
         /* Inside: the nearest of the wall and the caps. */
         if (P.dist <= -sa) {
             c[iu] = P.cu, c[iv] = P.cv;
-            poly_wall_normal(s, P.edge, n);
+            shape_poly_wall_normal(s, P.edge, n);
         } else {
             c[a] = cap < 0 ? s->lo : s->hi;
             n[iu] = n[iv] = 0, n[a] = cap;
@@ -454,7 +481,7 @@ static void near_polygon(const Shape *s, const double x[3], double c[3], double 
     if (P.sd > 0) c[iu] = P.cu, c[iv] = P.cv;
     c[a] = clamp(z, s->lo, s->hi);
     if (P.sd >= sa) {
-        poly_wall_normal(s, P.edge, n);
+        shape_poly_wall_normal(s, P.edge, n);
     } else {
         n[iu] = n[iv] = 0, n[a] = cap;
     }
@@ -465,8 +492,8 @@ static void nearest(const Shape *s, const double x[3], double c[3], double n[3])
     switch (s->kind) {
     case SHAPE_HALFSPACE: {
         double w[3];
-        sub(x, s->p, w);
-        double d = dot(w, s->q);
+        shape_sub(x, s->p, w);
+        double d = shape_dot(w, s->q);
         for (int k = 0; k < 3; k++) c[k] = x[k] - d * s->q[k], n[k] = s->q[k];
         return;
     }
@@ -487,7 +514,7 @@ void shape_normal(const Shape *s, const double x[3], double n[3])
 {
     double c[3];
     nearest(s, x, c, n);
-    double l = norm(n);
+    double l = shape_norm(n);
     if (l > 0)
         for (int k = 0; k < 3; k++) n[k] /= l;
 }
@@ -509,8 +536,8 @@ static double piece(const Shape *s, int kind, const double x[3], double g[3])
 {
     double w[3];
     if (kind == PIECE_SPHERE) {
-        sub(x, s->p, w);
-        double r = norm(w);
+        shape_sub(x, s->p, w);
+        double r = shape_norm(w);
         for (int k = 0; k < 3; k++) g[k] = w[k] / r;
         return r - s->r1;
     }
@@ -527,8 +554,8 @@ static double piece(const Shape *s, int kind, const double x[3], double g[3])
     }
     double T[3];
     axi_point(s, &A, 0, s->r1, T);
-    sub(x, T, w);
-    double r = norm(w);
+    shape_sub(x, T, w);
+    double r = shape_norm(w);
     for (int k = 0; k < 3; k++) g[k] = w[k] / r;
     return r - s->r2;
 }
@@ -542,7 +569,7 @@ static double polish(const Shape *s, int kind, const double a[3], const double d
     along(a, d, t, x);
     double f = piece(s, kind, x, g);
     for (int it = 0; it < 4 && f != 0; it++) {
-        double slope = dot(g, d);
+        double slope = shape_dot(g, d);
         if (!(slope != 0)) break;
         double dt = -f / slope;
         if (!(fabs(dt) < 1e-3)) break;
@@ -586,11 +613,11 @@ static int quadratic(double A, double B, double C, double r[2])
    B^2 - AC near tangency. */
 static int radial(const double w[3], const double d[3], double r, double out[2])
 {
-    double A = dot(d, d);
+    double A = shape_dot(d, d);
     if (!(A > 0)) return 0;
-    double tm = -dot(d, w) / A, m[3];
+    double tm = -shape_dot(d, w) / A, m[3];
     along(w, d, tm, m);
-    double mm = norm(m), D = (r - mm) * (r + mm);
+    double mm = shape_norm(m), D = (r - mm) * (r + mm);
     if (!(D >= 0) || !isfinite(tm)) return 0;
     double h = sqrt(D / A);
     out[0] = tm - h, out[1] = tm + h;
@@ -625,9 +652,9 @@ static int cand_box(const Shape *s, const double a[3], const double d[3], double
 static int cand_axi(const Shape *s, const double a[3], const double d[3], double *c)
 {
     double u[3], h, w[3], wp[3], dp[3];
-    axi_frame(s, u, &h);
-    sub(a, s->p, w);
-    double sa = dot(w, u), sd = dot(d, u);
+    shape_axi_frame(s, u, &h);
+    shape_sub(a, s->p, w);
+    double sa = shape_dot(w, u), sd = shape_dot(d, u);
     for (int k = 0; k < 3; k++) wp[k] = w[k] - sa * u[k], dp[k] = d[k] - sd * u[k];
     int n = 0, m;
     double r[2];
@@ -639,9 +666,9 @@ static int cand_axi(const Shape *s, const double a[3], const double d[3], double
         /* |w_perp|^2 = (r1 + k s)^2 along the line, factored where it
            cancels. */
         double k = (s->r2 - s->r1) / h, g0 = s->r1 + k * sa, g1 = k * sd;
-        double ndp = norm(dp), nwp = norm(wp);
+        double ndp = shape_norm(dp), nwp = shape_norm(wp);
         double A = (ndp - fabs(g1)) * (ndp + fabs(g1));
-        double B = dot(dp, wp) - g0 * g1, C = (nwp - g0) * (nwp + g0);
+        double B = shape_dot(dp, wp) - g0 * g1, C = (nwp - g0) * (nwp + g0);
         m = quadratic(A, B, C, r);
         for (int i = 0; i < m; i++) c[n++] = polish(s, PIECE_CONE, a, d, r[i]);
     }
@@ -658,14 +685,14 @@ static int cand_axi(const Shape *s, const double a[3], const double d[3], double
 static int cand_torus(const Shape *s, const double a[3], const double d[3], double *c)
 {
     double w[3], dd[3], inv = 1 / s->r1, rr = s->r2 * inv;
-    sub(a, s->p, w);
+    shape_sub(a, s->p, w);
     for (int k = 0; k < 3; k++) w[k] *= inv, dd[k] = d[k] * inv;
-    double z0 = dot(w, s->q), dz = dot(dd, s->q), wp[3], dp[3];
+    double z0 = shape_dot(w, s->q), dz = shape_dot(dd, s->q), wp[3], dp[3];
     for (int k = 0; k < 3; k++) wp[k] = w[k] - z0 * s->q[k], dp[k] = dd[k] - dz * s->q[k];
-    double al = dot(dd, dd), be = dot(dd, w), ga = dot(w, w);
+    double al = shape_dot(dd, dd), be = shape_dot(dd, w), ga = shape_dot(w, w);
     double K = ga + (1 - rr) * (1 + rr);
-    double coef[5] = {K * K - 4 * dot(wp, wp), 4 * be * K - 8 * dot(dp, wp),
-                      4 * be * be + 2 * al * K - 4 * dot(dp, dp), 4 * al * be, al * al};
+    double coef[5] = {K * K - 4 * shape_dot(wp, wp), 4 * be * K - 8 * shape_dot(dp, wp),
+                      4 * be * be + 2 * al * K - 4 * shape_dot(dp, dp), 4 * al * be, al * al};
     for (int i = 0; i < 5; i++)
         if (!isfinite(coef[i])) return 0;
     if (!(coef[4] > 0)) return 0;
@@ -688,7 +715,7 @@ static int cand_torus(const Shape *s, const double a[3], const double d[3], doub
 
 static int cand_polygon(const Shape *s, const double a[3], const double d[3], double *c)
 {
-    int iu = poly_u(s), iv = poly_v(s), n = 0, np = s->npoly;
+    int iu = shape_poly_u(s), iv = shape_poly_v(s), n = 0, np = s->npoly;
     double au = a[iu], av = a[iv], du = d[iu], dv = d[iv];
     for (int i = 0; i < np; i++) {
         const double *P = s->poly + 2 * i, *Q = s->poly + 2 * ((i + 1) % np);
@@ -709,13 +736,13 @@ static int candidates(const Shape *s, const double a[3], const double d[3], doub
     double w[3], r[2];
     switch (s->kind) {
     case SHAPE_HALFSPACE: {
-        double f0 = dot(d, s->q);
-        sub(a, s->p, w);
-        return plane(dot(w, s->q), f0, 0, c);
+        double f0 = shape_dot(d, s->q);
+        shape_sub(a, s->p, w);
+        return plane(shape_dot(w, s->q), f0, 0, c);
     }
     case SHAPE_BOX: return cand_box(s, a, d, c);
     case SHAPE_SPHERE: {
-        sub(a, s->p, w);
+        shape_sub(a, s->p, w);
         int m = radial(w, d, s->r1, r);
         for (int i = 0; i < m; i++) c[i] = polish(s, PIECE_SPHERE, a, d, r[i]);
         return m;
@@ -777,8 +804,8 @@ static double bisect(const Shape *s, const double a[3], const double d[3], int s
 int shape_crossings(const Shape *s, const double a[3], const double b[3], double *t, int max)
 {
     double d[3];
-    sub(b, a, d);
-    double len = norm(d);
+    shape_sub(b, a, d);
+    double len = shape_norm(d);
     if (!(len > 0)) return 0;
     /* Every level is the exact signed distance, so an end farther from
        the surface than the segment is long proves there is no crossing:
@@ -832,7 +859,7 @@ void shape_bounds(const Shape *s, double lo[3], double hi[3])
     case SHAPE_CYLINDER:
     case SHAPE_CONE: {
         double u[3], h;
-        axi_frame(s, u, &h);
+        shape_axi_frame(s, u, &h);
         double r2 = s->kind == SHAPE_CYLINDER ? s->r1 : s->r2;
         for (int k = 0; k < 3; k++) {
             double e = sqrt(fmax(0, 1 - u[k] * u[k]));  /* a disc's half extent per radius */
@@ -849,7 +876,7 @@ void shape_bounds(const Shape *s, double lo[3], double hi[3])
         }
         return;
     case SHAPE_POLYGON: {
-        int iu = poly_u(s), iv = poly_v(s);
+        int iu = shape_poly_u(s), iv = shape_poly_v(s);
         lo[iu] = lo[iv] = INFINITY, hi[iu] = hi[iv] = -INFINITY;
         for (int i = 0; i < s->npoly; i++) {
             lo[iu] = fmin(lo[iu], s->poly[2 * i]), hi[iu] = fmax(hi[iu], s->poly[2 * i]);
@@ -885,8 +912,8 @@ static double poly_perimeter(const Shape *s)
 static double axis_length(const Shape *s)
 {
     double w[3];
-    sub(s->q, s->p, w);
-    return norm(w);
+    shape_sub(s->q, s->p, w);
+    return shape_norm(w);
 }
 
 double shape_volume(const Shape *s)
@@ -945,7 +972,7 @@ static int finite3(const double v[3]) { return isfinite(v[0]) && isfinite(v[1]) 
 
 static const char *check_unit(Shape *s, const char *what)
 {
-    double n = norm(s->q);
+    double n = shape_norm(s->q);
     if (!finite3(s->q) || !(n > 0)) return fail(s, "%s must be a finite non-zero vector", what);
     for (int k = 0; k < 3; k++) s->q[k] /= n;
     return NULL;
@@ -1066,369 +1093,4 @@ void shape_free(Shape *s)
     free(s->poly);
     s->poly = NULL;
     s->npoly = 0;
-}
-
-/* ---- sampling (shape_sample) ----
-**
-** Structured point sets with exact normals, spacing at most h along every
-** parametric direction (counts are ceil(length / h) intervals, so the
-** ends of every edge are hit exactly):
-**   sphere    latitude rings theta_i = i pi / nt, ring i with
-**             round(2 pi r sin theta_i / h) points, every other ring
-**             turned by half a step; the poles are single points;
-**   cylinder  side rings at ceil(H / h) + 1 axial stations, the first and
-**             last being the rims; end discs as concentric rings about
-**             the centre point;
-**   cone      rings along the slant line, rims and end discs as for the
-**             cylinder, a zero radius end as one apex point;
-**   torus     tube rings (angle v) with round(2 pi (R + r cos v) / h)
-**             points each;
-**   box       the boundary points of the (nx+1)(ny+1)(nz+1) lattice,
-**             so each face is a grid and edges and corners lie exactly on
-**             the box's edges and corners;
-**   polygon   per side an (edge x axial) lattice, the polygon's vertices
-**             as edge lines, cap rims as edge points; caps are the nodes
-**             of a grid over the polygon's bounding rectangle that lie
-**             inside it at least h/2 from its sides;
-**   halfSpace a grid over the plane (frame perp_unit), clipped to lo..hi;
-**   unbounded cylinders and polygons: the same restricted to lo..hi.
-** A point on several faces (edges, corners, rims, polygon vertices) gets
-** the normalised sum of those faces' outward normals, so a seed offset
-** along it stays equidistant from the faces (thesis Fig. 3.16).
-*/
-
-typedef struct Samp {
-    int cnt, cap;
-    double *x, *nv;
-    const double *lo, *hi;   /* clip box (unbounded shapes), or NULL */
-    double tol;              /* clip tolerance */
-} Samp;
-
-static void samp_add(Samp *S, const double x[3], const double n[3])
-{
-    if (S->lo)
-        for (int k = 0; k < 3; k++)
-            if (!(x[k] >= S->lo[k] - S->tol && x[k] <= S->hi[k] + S->tol)) return;
-    if (S->cnt == S->cap) {
-        S->cap = S->cap ? 2 * S->cap : 256;
-        S->x = mem_realloc(S->x, (size_t)S->cap * 3 * sizeof *S->x);
-        S->nv = mem_realloc(S->nv, (size_t)S->cap * 3 * sizeof *S->nv);
-    }
-    double l = norm(n);
-    for (int k = 0; k < 3; k++) {
-        S->x[3 * S->cnt + k] = x[k];
-        S->nv[3 * S->cnt + k] = n[k] / l;
-    }
-    S->cnt++;
-}
-
-/* Intervals of at most h on a length (at least one; bounded so that a
-   tiny h cannot overflow). */
-static int samp_steps(double len, double h)
-{
-    double k = ceil(len / h - 1e-9);
-    return !(k >= 1) ? 1 : k > 1e7 ? 10000000 : (int)k;
-}
-
-static int samp_ring_count(double rho, double h)
-{
-    double m = rho > 0 ? floor(2 * PI * rho / h + 0.5) : 1;
-    return !(m >= 1) ? 1 : m > 1e7 ? 10000000 : (int)m;
-}
-
-typedef struct Frame {
-    double u[3], e1[3], e2[3];
-} Frame;
-
-static void frame_of(const double u[3], Frame *F)
-{
-    memcpy(F->u, u, sizeof F->u);
-    perp_unit(u, F->e1);
-    F->e2[0] = u[1] * F->e1[2] - u[2] * F->e1[1];
-    F->e2[1] = u[2] * F->e1[0] - u[0] * F->e1[2];
-    F->e2[2] = u[0] * F->e1[1] - u[1] * F->e1[0];
-}
-
-/* m points c + rho e(phi_j), phi_j = 2 pi (j + phase) / m, with normals
-   nr e(phi_j) + nu u; rho = 0 gives the one point c. */
-static void samp_ring(Samp *S, const Frame *F, const double c[3], double rho, int m, double phase, double nr,
-                      double nu)
-{
-    if (!(rho > 0)) m = 1;
-    for (int j = 0; j < m; j++) {
-        double ph = 2 * PI * (j + phase) / m, cs = cos(ph), sn = sin(ph), x[3], n[3];
-        for (int k = 0; k < 3; k++) {
-            double e = cs * F->e1[k] + sn * F->e2[k];
-            x[k] = c[k] + rho * e;
-            n[k] = nr * e + nu * F->u[k];
-        }
-        samp_add(S, x, n);
-    }
-}
-
-/* End disc of radius r about c, normal sgn u: concentric rings inside the
-   rim (which the side sampling owns). */
-static void samp_disc(Samp *S, const Frame *F, const double c[3], double r, double h, double sgn)
-{
-    int nr = samp_steps(r, h);
-    for (int k = 0; k < nr; k++) {
-        double rho = r * k / nr;
-        samp_ring(S, F, c, rho, samp_ring_count(rho, h), 0, 0, sgn);
-    }
-}
-
-static void samp_sphere(Samp *S, const Shape *s, double h)
-{
-    static const double z[3] = {0, 0, 1};
-    Frame F;
-    frame_of(z, &F);
-    int nt = samp_steps(PI * s->r1, h);
-    for (int i = 0; i <= nt; i++) {
-        double th = PI * i / nt, st = i == nt ? 0 : sin(th), ct = i == nt ? -1 : cos(th), c[3];
-        for (int k = 0; k < 3; k++) c[k] = s->p[k] + s->r1 * ct * F.u[k];
-        samp_ring(S, &F, c, s->r1 * st, samp_ring_count(s->r1 * st, h), 0.5 * (i % 2), st, ct);
-    }
-}
-
-/* Cylinder and cone: rings along the slant line from the rim at p
-   (radius r1) to the rim at q (radius r2), then the end discs. */
-/* Coordinate of node i of n intervals on [a, b], the ends exact. */
-static double samp_node(double a, double b, int i, int n)
-{
-    return i == n ? b : a + (b - a) * i / n;
-}
-
-/* Midpoint of interval i of n on [a, b]: where a surface leaves through
-   the box, samples half a spacing from the box sides put the seeds of
-   the boundary pairs inside the box, and the box side, a symmetry plane
-   of the Voronoi diagram there, closes the pairs' cells exactly. */
-static double samp_mid(double a, double b, int i, int n)
-{
-    return a + (b - a) * (i + 0.5) / n;
-}
-
-/* A finite cylinder's mantle: the two rims (edge points, Fig. 3.16) and
-   ns rings at the midpoints of ns equal intervals between them, all
-   aligned.  Aligned rings: the seed pairs of neighbouring rings meet only
-   on the surface (staggered rings give Voronoi grids many small faces
-   between a seed and the next ring's partner: 1.3 % of the area of a
-   cylinder at h = r/7, against 0.1 % aligned).  Midpoints: the edge rule
-   puts the mirror seeds of a rim half a spacing from it, where the first
-   ring's seeds then are too, instead of closer than the minimum
-   spacing. */
-static void samp_cylinder_rings(Samp *S, const Shape *s, const Frame *F, int ns, int m)
-{
-    for (int i = 0; i <= ns + 1; i++) {
-        double t = i == 0 ? 0 : i == ns + 1 ? 1 : samp_mid(0, 1, i - 1, ns), c[3];
-        for (int j = 0; j < 3; j++) c[j] = i == ns + 1 ? s->q[j] : s->p[j] + t * (s->q[j] - s->p[j]);
-        samp_ring(S, F, c, s->r1, m, 0, 1, i == 0 ? -1 : i == ns + 1 ? 1 : 0);
-    }
-}
-
-static void samp_axi(Samp *S, const Shape *s, double h)
-{
-    double u[3], H, r1 = s->r1, r2 = s->kind == SHAPE_CONE ? s->r2 : s->r1;
-    axi_frame(s, u, &H);
-    Frame F;
-    frame_of(u, &F);
-    double k = (r2 - r1) / H, L = sqrt(1 + k * k);
-    int ns = samp_steps(hypot(H, r2 - r1), h);
-    int m = samp_ring_count(fmax(r1, r2), h);
-    if (s->kind == SHAPE_CYLINDER) {
-        samp_cylinder_rings(S, s, &F, ns, m);
-    } else {
-        for (int i = 0; i <= ns; i++) {
-            double t = (double)i / ns, rho = i == ns ? r2 : r1 + t * (r2 - r1), c[3];
-            for (int j = 0; j < 3; j++) c[j] = i == ns ? s->q[j] : s->p[j] + t * (s->q[j] - s->p[j]);
-            double nu = -k / L + (i == 0 ? -1 : i == ns ? 1 : 0);
-            if (!(rho > 0)) {   /* apex: along the axis, away from the base */
-                samp_ring(S, &F, c, 0, 1, 0, 0, k > 0 ? -1 : 1);
-                continue;
-            }
-            samp_ring(S, &F, c, rho, samp_ring_count(rho, h), 0.5 * (i % 2), 1 / L, nu);
-        }
-    }
-    if (r1 > 0) samp_disc(S, &F, s->p, r1, h, -1);
-    if (r2 > 0) samp_disc(S, &F, s->q, r2, h, 1);
-}
-
-/* Axial range [*a, *b] (from p along unit u) of the box lo..hi. */
-static void samp_box_range(const double p[3], const double u[3], const double lo[3], const double hi[3], double *a,
-                           double *b)
-{
-    *a = INFINITY, *b = -INFINITY;
-    for (int c = 0; c < 8; c++) {
-        double x[3] = {c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]}, w[3];
-        sub(x, p, w);
-        double t = dot(w, u);
-        *a = fmin(*a, t), *b = fmax(*b, t);
-    }
-}
-
-static void samp_infinite_cylinder(Samp *S, const Shape *s, double h, const double lo[3], const double hi[3])
-{
-    double u[3], H, a, b;
-    axi_frame(s, u, &H);
-    Frame F;
-    frame_of(u, &F);
-    samp_box_range(s->p, u, lo, hi, &a, &b);
-    int ns = samp_steps(b - a, h), m = samp_ring_count(s->r1, h);
-    for (int i = 0; i < ns; i++) {
-        double t = samp_mid(a, b, i, ns), c[3];
-        for (int j = 0; j < 3; j++) c[j] = s->p[j] + t * u[j];
-        samp_ring(S, &F, c, s->r1, m, 0, 1, 0);   /* aligned: see samp_axi */
-    }
-}
-
-static void samp_torus(Samp *S, const Shape *s, double h)
-{
-    Frame F;
-    frame_of(s->q, &F);
-    int nv = samp_ring_count(s->r2, h);
-    if (nv < 3) nv = 3;
-    for (int j = 0; j < nv; j++) {
-        double v = 2 * PI * j / nv, rho = s->r1 + s->r2 * cos(v), c[3];
-        for (int k = 0; k < 3; k++) c[k] = s->p[k] + s->r2 * sin(v) * F.u[k];
-        int m = samp_ring_count(rho, h);
-        samp_ring(S, &F, c, rho, m < 3 ? 3 : m, 0.5 * (j % 2), cos(v), sin(v));
-    }
-}
-
-
-/* Node i of 0..n+1 across [a, b]: the ends (edge points), and between
-   them the midpoints of n equal intervals (see samp_cylinder_rings). */
-static double samp_edge_mid(double a, double b, int i, int n)
-{
-    return i == 0 ? a : i == n + 1 ? b : samp_mid(a, b, i - 1, n);
-}
-
-/* Every face a grid of the edges and the midpoints between them (as a
-   cylinder's rings): the edge rule (Fig. 3.16) puts the mirror seeds of
-   an edge half a spacing from it, where the first row of the faces'
-   seeds then is too, so one replaces the other cleanly instead of
-   standing a fraction of the minimum spacing apart. */
-static void samp_box(Samp *S, const Shape *s, double h)
-{
-    int n[3];
-    for (int k = 0; k < 3; k++) n[k] = samp_steps(s->q[k] - s->p[k], h);
-    for (int i = 0; i <= n[0] + 1; i++)
-        for (int j = 0; j <= n[1] + 1; j++) {
-            int inner = i > 0 && i <= n[0] && j > 0 && j <= n[1];
-            for (int l = 0; l <= n[2] + 1; l += inner ? n[2] + 1 : 1) {
-                int idx[3] = {i, j, l};
-                double x[3], nv[3];
-                for (int k = 0; k < 3; k++) {
-                    x[k] = samp_edge_mid(s->p[k], s->q[k], idx[k], n[k]);
-                    nv[k] = idx[k] == 0 ? -1 : idx[k] == n[k] + 1 ? 1 : 0;
-                }
-                samp_add(S, x, nv);
-            }
-        }
-}
-
-/* Node j of 0..nz+1 along a polygon prism's axis: capped ends are edge
-   points, and between them the midpoints of nz intervals (samp_box); an
-   end on the box has no node (half an interval from it); NAN for no
-   node. */
-static double polygon_z(double za, double zb, int j, int nz, int cap_lo, int cap_hi)
-{
-    if ((j == 0 && !cap_lo) || (j == nz + 1 && !cap_hi)) return NAN;
-    return samp_edge_mid(za, zb, j, nz);
-}
-
-/* The polygon's sides between z = za and zb (caps where cap_lo / cap_hi),
-   then the caps. */
-static void samp_polygon(Samp *S, const Shape *s, double h, double za, double zb, int cap_lo, int cap_hi)
-{
-    int a = s->axis, iu = poly_u(s), iv = poly_v(s), np = s->npoly;
-    int nz = samp_steps(zb - za, h);
-    for (int e = 0; e < np; e++) {
-        const double *P = s->poly + 2 * e, *Q = s->poly + 2 * ((e + 1) % np);
-        double ne[3], nprev[3];
-        poly_wall_normal(s, e, ne);
-        poly_wall_normal(s, (e + np - 1) % np, nprev);
-        int m = samp_steps(hypot(Q[0] - P[0], Q[1] - P[1]), h);
-        /* the vertex line (i = 0), then the midpoints of m intervals */
-        for (int i = 0; i <= m; i++)
-            for (int j = 0; j <= nz + 1; j++) {
-                double x[3], nv[3], t = i == 0 ? 0 : (i - 0.5) / m;
-                x[iu] = P[0] + (Q[0] - P[0]) * t;
-                x[iv] = P[1] + (Q[1] - P[1]) * t;
-                x[a] = polygon_z(za, zb, j, nz, cap_lo, cap_hi);
-                if (!isfinite(x[a])) continue;
-                for (int k = 0; k < 3; k++) nv[k] = ne[k] + (i == 0 ? nprev[k] : 0);
-                if (j == 0) nv[a] -= 1;
-                if (j == nz + 1) nv[a] += 1;
-                samp_add(S, x, nv);
-            }
-    }
-    if (!cap_lo && !cap_hi) return;
-    double lo[3], hi[3];
-    shape_bounds(s, lo, hi);
-    int mu = samp_steps(hi[iu] - lo[iu], h), mv = samp_steps(hi[iv] - lo[iv], h);
-    for (int i = 0; i <= mu; i++)
-        for (int j = 0; j <= mv; j++) {
-            double u = samp_node(lo[iu], hi[iu], i, mu), v = samp_node(lo[iv], hi[iv], j, mv);
-            Poly2 P;
-            poly2(s, u, v, &P);
-            if (!P.inside || P.dist < 0.5 * h) continue;
-            for (int c = 0; c < 2; c++) {
-                if (!(c ? cap_hi : cap_lo)) continue;
-                double x[3], nv[3] = {0, 0, 0};
-                x[iu] = u, x[iv] = v, x[a] = c ? zb : za;
-                nv[a] = c ? 1 : -1;
-                samp_add(S, x, nv);
-            }
-        }
-}
-
-static void samp_halfspace(Samp *S, const Shape *s, double h, const double lo[3], const double hi[3])
-{
-    Frame F;
-    frame_of(s->q, &F);
-    double a0, a1, b0, b1;
-    samp_box_range(s->p, F.e1, lo, hi, &a0, &a1);
-    samp_box_range(s->p, F.e2, lo, hi, &b0, &b1);
-    int na = samp_steps(a1 - a0, h), nb = samp_steps(b1 - b0, h);
-    for (int i = 0; i < na; i++)
-        for (int j = 0; j < nb; j++) {
-            double a = samp_mid(a0, a1, i, na), b = samp_mid(b0, b1, j, nb), x[3];
-            for (int k = 0; k < 3; k++) x[k] = s->p[k] + a * F.e1[k] + b * F.e2[k];
-            samp_add(S, x, s->q);
-        }
-}
-
-int shape_sample(const Shape *s, double h, const double lo[3], const double hi[3], double **x, double **n)
-{
-    Samp S = {0, 0, NULL, NULL, NULL, NULL, 0};
-    int unbounded = s->kind == SHAPE_HALFSPACE || (s->kind == SHAPE_CYLINDER && s->infinite)
-                 || (s->kind == SHAPE_POLYGON && !(isfinite(s->lo) && isfinite(s->hi)));
-    if (unbounded && lo && hi) {
-        S.lo = lo, S.hi = hi;
-        for (int k = 0; k < 3; k++) S.tol = fmax(S.tol, 1e-9 * (fabs(lo[k]) + fabs(hi[k])));
-    }
-    if (h > 0 && (!unbounded || S.lo)) {
-        switch (s->kind) {
-        case SHAPE_HALFSPACE: samp_halfspace(&S, s, h, lo, hi); break;
-        case SHAPE_BOX: samp_box(&S, s, h); break;
-        case SHAPE_SPHERE: samp_sphere(&S, s, h); break;
-        case SHAPE_CYLINDER:
-            if (s->infinite) samp_infinite_cylinder(&S, s, h, lo, hi);
-            else samp_axi(&S, s, h);
-            break;
-        case SHAPE_CONE: samp_axi(&S, s, h); break;
-        case SHAPE_TORUS: samp_torus(&S, s, h); break;
-        case SHAPE_POLYGON: {
-            int a = s->axis;
-            double za = isfinite(s->lo) ? s->lo : lo[a], zb = isfinite(s->hi) ? s->hi : hi[a];
-            if (S.lo) za = fmax(za, lo[a]), zb = fmin(zb, hi[a]);
-            if (za < zb) samp_polygon(&S, s, h, za, zb, za == s->lo, zb == s->hi);
-            break;
-        }
-        default: break;
-        }
-    }
-    *x = S.x ? S.x : MEM_NEW(double, 1);
-    *n = S.nv ? S.nv : MEM_NEW(double, 1);
-    return S.cnt;
 }

@@ -87,6 +87,13 @@ void shape_free(Shape *s);   /* frees poly */
 double shape_level(const Shape *s, const double x[3]);
 int shape_inside(const Shape *s, const double x[3]);   /* level < 0 */
 
+/* A cheaper level for the volume-fraction integrator (volfrac.c): the
+   same sign and zero set as shape_level, 1-Lipschitz, |bound| <=
+   |level|; the larger slab distance for boxes and cylinder/cone ends (no
+   Euclidean corner term), the side-line distance for cones; shape_level
+   itself for the other kinds. */
+double shape_bound(const Shape *s, const double x[3]);
+
 /* Parameters t in [0, 1], ascending, at which the segment
    x(t) = a + t (b - a) crosses the surface transversally (the inside state
    changes there).  Tangential touches (double roots) are not reported;
@@ -119,7 +126,8 @@ void shape_closest(const Shape *s, const double x[3], double c[3]);
    Voronoi grid can reproduce them (thesis Fig. 3.16).  Returns the count;
    *x and *n (outward unit normals; at an edge or corner point the mean of
    the faces' normals, normalised) are new arrays of 3 per point.
-   Unbounded shapes are sampled inside the box lo..hi only. */
+   Unbounded shapes are sampled inside the box lo..hi only.  In
+   shape_sample.c. */
 int shape_sample(const Shape *s, double h, const double lo[3], const double hi[3], double **x, double **n);
 
 /* Axis-aligned bounding box (infinite extents as +-INFINITY). */

@@ -14,6 +14,7 @@
 #include "case.h"
 #include "err.h"
 #include "field.h"
+#include "geometry.h"
 #include "mesh.h"
 #include "runtime.h"
 #include "setfields.h"
@@ -22,9 +23,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const ArgDict dicts[] = {{"system/setFieldsDict", setfields_keys, setfields_help}, {0}};
+static const ArgDict dicts[] = {{"system/setFieldsDict", setfields_keys, setfields_help},
+                                {"system/setFieldsDict, a shapeToCell region", geometry_shape_keys, NULL},
+                                {0}};
 
-static const ToolInfo tool = {"setFields", "sets field values in boxes, spheres, cylinders, cones, half-spaces",
+static const ToolInfo tool = {"setFields", "sets field values in regions: boxes, spheres, cylinders, cones, half-spaces, any geometryDict shape",
                               NULL, dicts, 1};
 
 /* The library's warnings, one per line, to stderr. */
@@ -52,7 +55,7 @@ int main(int argc, char **argv)
     char *dpath = args_dict_path(&a, &cs, "system/setFieldsDict", 0);
     Dict *d = dict_read(dpath, &e);
     SetFields s;
-    if (!d || setfields_parse(&s, d, &e)) err_die(&e);
+    if (!d || setfields_parse(&s, d, cs.dir, &e)) err_die(&e);
     if (s.nfields == 0) err_fatal("%s: no field values to set", dpath);
 
     FieldWriteOpts wo;
