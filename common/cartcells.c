@@ -1,6 +1,6 @@
 /*
 ** cartcells.c: building, composing and checking the cut-cell data
-** contract (cartcells.h; the file itself is cartcellsio.c).
+** contract (cartcells.h; the file itself is cartcells_io.c).
 **
 ** Building is a few counting passes over flat arrays: the parents of a
 ** cell are found by a counting sort of the Cartesian cells by the cell

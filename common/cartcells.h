@@ -81,7 +81,7 @@ void cartcells_voronoi(const Mesh *m, const unsigned char *centre_seed, CartCell
    cell (index and i j k) or cell that breaks one. */
 int mesh_check_cartesian(const Mesh *m, double tol, Err *e);
 
-/* The file, for meshio.c: the body of cartesianCells (after the FoamFile
+/* The file, for mesh_io.c: the body of cartesianCells (after the FoamFile
    header), ascii or binary; and reading it back (sizes and ranges
    checked, the invariants left to mesh_check_cartesian).  Needs m's
    cartesianGrid and cell count. */

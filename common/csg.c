@@ -3,7 +3,7 @@
 ** and CAD models, and its evaluation: the queries of geometry.h on the
 ** domain (inside, level, crossings, normals, nearest leaf, exact volume,
 ** bounding planes).  The node layout is csg.h; reading the tree from
-** system/geometryDict is geometrydict.c; sampling its boundary is
+** system/geometryDict is geometry_dict.c; sampling its boundary is
 ** geometry_sample.c.
 **
 ** Tree.  Leaves are primitives (Shape) or triangulated surfaces

@@ -3,7 +3,7 @@
 ** three files that implement geometry.h and by no other:
 **   csg.c              the tree and its evaluation: inside, level,
 **                      crossings, normals, nearest leaf, exact volume;
-**   geometrydict.c     reading system/geometryDict into a tree;
+**   geometry_dict.c    reading system/geometryDict into a tree;
 **   geometry_sample.c  points on the flow domain's boundary.
 ** Callers outside these see only geometry.h's queries on the domain.
 **

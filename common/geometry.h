@@ -49,7 +49,7 @@
 ** (a sphere centred on the plane becomes a disc of the same radius).
 **
 ** This header is the public face of three files: csg.c (the tree and
-** every query on the domain), geometrydict.c (reading the dictionary)
+** every query on the domain), geometry_dict.c (reading the dictionary)
 ** and geometry_sample.c (points on the boundary); csg.h is the tree they
 ** share.  setFields uses the same Geometry for its regions (one solid,
 ** flow inside: geometry_of_shape, geometry_parse_solid), with the cell

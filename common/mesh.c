@@ -1,6 +1,6 @@
 /*
 ** mesh.c: the polyMesh in memory: invariants, addressing, geometry.
-** Reading and writing the files is in meshio.c.
+** Reading and writing the files is in mesh_io.c.
 **
 ** The invariants (mesh.h) are OpenFOAM's:
 **   - faces 0..ninternal-1 are internal, owner[f] < neighbour[f], and they

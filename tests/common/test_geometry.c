@@ -1,5 +1,5 @@
 /*
-** test_geometry.c: the flow domain of system/geometryDict (csg.c, geometrydict.c):
+** test_geometry.c: the flow domain of system/geometryDict (csg.c, geometry_dict.c):
 ** CSG crossings against a brute-force scan, transforms, normal signs,
 ** 2-D sections, exact volumes, STL leaves and dictionary errors.
 */

@@ -414,7 +414,7 @@ TEST(format_choice)
 }
 
 /* The geometry layer takes OBJ files under shape surface, obj and stl,
-   and under cad too (gmsh reads no OBJ; geometrydict.c hands it to ours). */
+   and under cad too (gmsh reads no OBJ; geometry_dict.c hands it to ours). */
 TEST(geometry_shapes)
 {
     char *p = data_path("obj/lprism.obj");

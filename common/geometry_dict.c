@@ -1,5 +1,5 @@
 /*
-** geometrydict.c: reading system/geometryDict into the CSG tree of a
+** geometry_dict.c: reading system/geometryDict into the CSG tree of a
 ** Geometry (geometry_read, geometry_parse; the tree is csg.h), and one
 ** shape dictionary into a Geometry of one solid (geometry_parse_solid,
 ** setFields' shapeToCell regions).

@@ -1,6 +1,6 @@
 /*
-** cartcellsio.c: the file constant/polyMesh/cartesianCells (cartcells.h),
-** a dictionary that meshio.c writes and reads beside the other extras:
+** cartcells_io.c: the file constant/polyMesh/cartesianCells (cartcells.h),
+** a dictionary that mesh_io.c writes and reads beside the other extras:
 **
 **   n            (nx ny nz);                  cartesianGrid's counts
 **   role         List<label> N(...);          per Cartesian cell

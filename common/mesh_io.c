@@ -1,5 +1,5 @@
 /*
-** meshio.c: reading and writing constant/polyMesh, and its stream form.
+** mesh_io.c: reading and writing constant/polyMesh, and its stream form.
 **
 ** Files (mesh.h): points (vectorField), faces (faceList in ascii,
 ** faceCompactList in binary), owner and neighbour (labelList, with
@@ -39,7 +39,7 @@
 ** NULL get OpenFOAM's default inGroups (1(wall), 1(empty), ...), and the
 ** reader turns that default back into NULL.  Extras that the mesh lacks
 ** (cartesianGrid, cellParent, boundaryNormal, mergeMap, cellSeed,
-** cartesianCells: cartcellsio.c) are removed from the directory, so a stale cellParent from an earlier
+** cartesianCells: cartcells_io.c) are removed from the directory, so a stale cellParent from an earlier
 ** mesh can never be read with a new one.
 */
 #include "cartcells.h"
