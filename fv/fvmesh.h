@@ -1,0 +1,58 @@
+/*
+** fvmesh.h: the finite-volume view of a grid: every derived quantity the
+** discretisation needs, computed once per grid (spec granular-model.md
+** §2.6, §4.2).
+**
+** Layout: flat arrays indexed by cell and by face, as the Mesh's.  Owned
+** cells come first (0 .. nowned-1) and halo cells after (nowned .. ncells-1),
+** so a distributed run (PETSc, MPI) only appends halo cells and the loops
+** over owned cells stay as they are; a serial run has no halo cells.
+**
+** Conventions: face normals point out of the owner (OpenFOAM's); the
+** thesis writes its fluxes with the inner normal of the cell C at hand
+** (spec §2.6, "sign convention"), which the assembly takes care of.  The
+** node of a cell is the point its unknowns live at: its Voronoi seed on a
+** Voronoi grid (ICCM^V), its centroid otherwise (mesh_cell_node).
+**
+** Distances of eq. 4.62-4.63: h_f = min(|(x_C - x_f).n_f|, |(x_F - x_f).n_f|)
+** on an internal face (C, F its two nodes), the owner's normal distance on
+** a boundary face; ht_f = h_f on internal faces and 0 on boundary faces, so
+** the face-normal derivative is [xi(x_f + n h_f) - xi(x_f - n ht_f)] /
+** (h_f + ht_f), symmetric inside and one-sided at a boundary.
+*/
+#ifndef KIESEL_FVMESH_H
+#define KIESEL_FVMESH_H
+
+#include "cartcells.h"
+#include "err.h"
+#include "mesh.h"
+
+typedef struct FvMesh {
+    Mesh *m;              /* the grid; geometry and cell faces are filled */
+    int ncells, nowned;   /* all cells, the owned ones first */
+    int nfaces, ninternal, nboundary;
+    int empty_axis;       /* 0..2 for a 2-D grid (empty front and back), else -1 */
+    double *mag_sf;       /* nfaces: |S_f| */
+    double *nf;           /* 3 nfaces: unit normal, out of the owner */
+    double *node;         /* 3 ncells: the cell's node (seed or centroid) */
+    double *h, *ht;       /* nfaces: h_f and ht_f of eq. 4.62-4.63 */
+    int *face_patch;      /* nboundary: patch of boundary face ninternal + i */
+    char *empty_face;     /* nfaces: 1 on faces of empty patches (no flux) */
+    char *cartesian_face; /* nfaces: 1 between two whole Cartesian cells
+                             (eq. 4.61: the face value is the mean) */
+    double hcart[3];      /* smallest Cartesian spacing per axis, or 0 */
+} FvMesh;
+
+/* Builds the view of m (geometry and cell faces computed when missing).
+   Fails, with the reason in e, on a grid with a degenerate face or cell
+   (zero area or volume) or a node on a face's plane. */
+int fvmesh_init(FvMesh *f, Mesh *m, Err *e);
+void fvmesh_free(FvMesh *f);
+
+/* Cartesian data contract present (cartesianGrid and cartesianCells)? */
+int fvmesh_has_cartesian(const FvMesh *f);
+
+/* Total volume of the owned cells. */
+double fvmesh_volume(const FvMesh *f);
+
+#endif
