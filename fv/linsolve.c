@@ -349,7 +349,8 @@ static PetscErrorCode set_options(LinSystem *L)
     TRY(KSPSetFromOptions(L->ksp));
     KSPType t;
     TRY(KSPGetType(L->ksp, &t));
-    if (strcmp(t, KSPPREONLY) != 0 && !(o && strstr(o, "-ksp_norm_type"))) {
+    if (strcmp(t, KSPPREONLY) == 0) return KSPSetInitialGuessNonzero(L->ksp, PETSC_FALSE);
+    if (!(o && strstr(o, "-ksp_norm_type"))) {
         TRY(KSPSetNormType(L->ksp, KSP_NORM_UNPRECONDITIONED));
         TRY(KSPSetConvergenceTest(L->ksp, converged, &L->conv, NULL));
     }
