@@ -197,6 +197,7 @@ TEST(cut_merged_pattern)
     EXPECT(npairs < f.ninternal, "no merged cell shares two faces with a neighbour: the case tests nothing");
     fvmatrix_free(&M);
     fvmesh_free(&f);
+    merge_stats_free(&ms);
     mesh_free(&merged);
     mesh_free(&cutm);
     mesh_free(&grid);
