@@ -400,3 +400,11 @@ void bc_values(const Bc *bc, const double *v, double *xb)
         for (int k = 0; k < bc->width; k++)
             xb[b * bc->width + k] = face_value(bc, &bc->patch[bc->fm->face_patch[b]], b, v, k);
 }
+
+void bc_states(const Bc *bc, const double *v, double *xb)
+{
+    bc_values(bc, v, xb);
+    int w = bc->width;
+    for (int b = 0; b < bc->nboundary; b++)
+        if (bc->nbr[b] >= 0) memcpy(xb + (size_t)b * w, v + (size_t)bc->nbr[b] * w, (size_t)w * sizeof *xb);
+}

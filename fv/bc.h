@@ -121,6 +121,12 @@ void bc_update(Bc *bc, const double *v);
    sources of stencils (fv/stencil.h) read one component of it. */
 void bc_values(const Bc *bc, const double *v, double *xb);
 
+/* The state across every boundary face, as the upwind convection of eq.
+   4.60 takes it (fv/fvc.h: B(xi_C, xi_F, u.n) with xi_F this): the
+   boundary value of bc_values, except that a cyclic face gives the
+   periodic neighbour's own value xi_N. */
+void bc_states(const Bc *bc, const double *v, double *xb);
+
 /* Component k of the boundary values (stride 1, nboundary numbers), the
    form stencil_apply takes. */
 void bc_values_component(const Bc *bc, const double *v, int k, double *xb);

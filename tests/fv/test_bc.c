@@ -380,6 +380,13 @@ TEST(cyclic_block)
             }
         NEAR(worst, 0, 1e-15);
         NEAR(gworst, 0, 1e-13);
+        /* the upwind state across a cyclic face: the neighbour's value */
+        bc_states(&bc, f.v, xb);
+        int bl = bface(&fm, "left", 2), br = bface(&fm, "right", 5);
+        NEAR(xb[3 * bl + 1], f.v[3 * m.owner[fm.ninternal + bface(&fm, "right", 2)] + 1], 0);
+        NEAR(xb[3 * br], f.v[3 * m.owner[fm.ninternal + bface(&fm, "left", 5)]], 0);
+        int bw = bface(&fm, "walls", 0);
+        NEAR(xb[3 * bw], 0, 0);
         NEAR(affine_mismatch(&bc, f.v), 0, 1e-15);
         free(xb);
         bc_free(&bc);
