@@ -278,6 +278,7 @@ TEST(slip_cut_sphere)
     merge_opts_default(&mo);
     EXPECT(cut_mesh(&grid, &G.g, NULL, &cutm, &cs, &e) == 0, "%s", e.msg);
     EXPECT(merge_mesh(&cutm, &mo, &merged, &ms, &e) == 0, "%s", e.msg);
+    merge_stats_free(&ms);
     FvMesh fm;
     EXPECT(fvmesh_init(&fm, &merged, &e) == 0, "%s", e.msg);
     double zero[3] = {0, 0, 0};
@@ -441,6 +442,7 @@ static int channel(double y0, double rise, int merge, Mesh *out, char **path, Fi
         MergeStats ms;
         merge_opts_default(&mo);
         rc = merge_mesh(&cutm, &mo, out, &ms, e);
+        if (rc == 0) merge_stats_free(&ms);
         mesh_free(&cutm);
         if (rc) return -1;
     }
