@@ -1209,7 +1209,7 @@ static int64_t cell_base(const Ctx *c, int i, int j, int k)
    sees it (the cap of the cylinder).  Before that, solid vertices lying
    on the surface but met by no grid line crossing (a box corner on a
    grid vertex) are found by testing the point snap x the way towards
-   each fluid corner of their cells. */
+   each fluid corner of every cell with fluid and solid corners. */
 static void surface_corners(Ctx *c)
 {
     for (int k = 0; k < c->n[2]; k++)
@@ -1223,7 +1223,11 @@ static void surface_corners(Ctx *c)
                     nb += !c->cls[cv[q]] && c->onsurf[cv[q]];
                 }
                 ns = 8 - nf - nb;
-                if (!nf || !nb || !ns) continue;
+                /* every cell with fluid and solid corners, as snap_diagonal
+                   tests the fluid ones: the two flow sides of a geometry
+                   then find the same vertices (a box corner on a grid
+                   vertex whose grid lines all run along its edges) */
+                if (!nf || !ns) continue;
                 for (int q = 0; q < 8; q++)
                     if (!c->cls[cv[q]] && !c->onsurf[cv[q]] && diagonal_touch(c, i, j, k, cv, q, 1))
                         c->onsurf[cv[q]] = 1;

@@ -99,6 +99,7 @@ void field_free(Field *f)
     for (int p = 0; p < f->npatches && f->pf; p++) {
         free(f->pf[p].type);
         free(f->pf[p].value);
+        free(f->pf[p].file);
         if (f->pf[p].extra) dict_free(f->pf[p].extra);
     }
     for (int k = 0; k < FIELD_NKEEP; k++)
@@ -515,9 +516,12 @@ static int keep_unused(Field *f, const Dict *bf, const Mesh *m, const DictEntry 
 
 /* ---- reading ---- */
 
-static int read_patch(PatchField *pf, const Patch *patch, const DictEntry *en, int width, Err *e)
+static int read_patch(PatchField *pf, const Patch *patch, const DictEntry *en, int width, const char *file,
+                      Err *e)
 {
     pf->n = patch->size;
+    pf->file = mem_strdup(en && en->file ? en->file : file);
+    pf->line = en ? en->line : 0;
     if (!en) {
         pf->type = mem_strdup(patch->type);
         return 0;
@@ -605,7 +609,7 @@ static int read_body(Field *f, const Mesh *m, const Dict *d, const char *file, E
     int *set = MEM_NEW(int, m->npatches);
     int rc = match_patches(bf, m, file, pe, set, e);
     for (int p = 0; p < m->npatches && rc == 0; p++)
-        rc = read_patch(&f->pf[p], &m->patches[p], pe[p], f->width, e);
+        rc = read_patch(&f->pf[p], &m->patches[p], pe[p], f->width, file, e);
     if (rc == 0) rc = keep_unused(f, bf, m, pe, file, e);
     if (rc == 0) rc = keep_top(f, d, file, e);
     for (size_t i = 0; rc == 0 && i < dict_nwarnings(d); i++) add_warning(f, dict_warning(d, i));

@@ -30,6 +30,10 @@ typedef struct PatchField {
     int n;             /* face count of the patch */
     double *value;     /* n*width face values, or NULL when the type has none */
     Dict *extra;       /* other entries, written back verbatim (may be NULL) */
+    char *file;        /* where its boundaryField entry is (field_read; the */
+    int line;          /* field's file and line 0 when the patch took its
+                          constraint type without an entry; NULL and 0 from
+                          field_init), for the solvers' messages */
 } PatchField;
 
 /* Places of the kept top-level entries: before dimensions, before

@@ -1,0 +1,410 @@
+/*
+** bc.c: boundary conditions parsed once (bc.h).
+**
+** bc_init works in three passes so that every refusal comes before any
+** coefficient: the field against the grid (cell and patch counts, face
+** counts, constraint types on both sides), each patch's type against the
+** field's width, and the cyclic pairs against the geometry.  Then the
+** coefficients that never change are written once (fixed values,
+** Neumann faces, slip's diagonal, cyclic weights) and bc_update writes
+** the explicit parts that follow the field.
+**
+** Cyclic pairing follows OpenFOAM: face i of a cyclic patch couples to
+** face i of its neighbourPatch.  Nothing but order pairs them, so the
+** order is checked: the two centres must differ by one translation for
+** the whole patch (to 1e-9 of the grid's size), the areas agree and the
+** normals be opposite.  A block grid's cyclic sides pass by
+** construction; a cut grid's pass when the geometry is periodic along
+** the pair, like the inclined channel of thesis §5.1.3.1 whose walls
+** start and end at grid corners.
+*/
+#include "bc.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geom.h"
+#include "mem.h"
+
+static const char *const kind_names[BC_NKINDS] = {"fixedValue", "zeroGradient",  "noSlip", "movingWall", "slip",
+                                                  "symmetryPlane", "cyclic", "empty", "calculated"};
+
+const char *bc_kind_name(BcKind k) { return k >= 0 && k < BC_NKINDS ? kind_names[k] : "?"; }
+
+/* The kind of a type keyword, or -1. */
+static int kind_of(const char *t)
+{
+    if (!t) return -1;
+    if (!strcmp(t, "movingWallVelocity")) return BC_MOVING_WALL;
+    if (!strcmp(t, "symmetry")) return BC_SYMMETRY_PLANE;
+    for (int k = 0; k < BC_NKINDS; k++)
+        if (!strcmp(t, kind_names[k])) return k;
+    return -1;
+}
+
+/* ---- messages: the file and line of a patch's entry ---- */
+
+typedef struct Ctx {
+    const Field *f;
+    const FvMesh *fm;
+    const Mesh *m;
+    Bc *bc;
+} Ctx;
+
+static const char *where_file(const Ctx *c, int p)
+{
+    if (p >= 0 && p < c->f->npatches && c->f->pf[p].file) return c->f->pf[p].file;
+    for (int q = 0; q < c->f->npatches; q++)
+        if (c->f->pf[q].file) return c->f->pf[q].file;
+    return c->f->name;
+}
+
+static int where_line(const Ctx *c, int p) { return p >= 0 && p < c->f->npatches ? c->f->pf[p].line : 0; }
+
+#define PATCH_ERR(c, p, ...) err_set(e, where_file(c, p), where_line(c, p), __VA_ARGS__)
+
+/* ---- pass 1: the field against the grid ---- */
+
+static int check_counts(const Ctx *c, Err *e)
+{
+    const Field *f = c->f;
+    const Mesh *m = c->m;
+    if (f->ncells != m->ncells)
+        return PATCH_ERR(c, -1, "field '%s' has %d cells, the grid %d: the field is not of this grid", f->name,
+                         f->ncells, m->ncells);
+    if (f->npatches != m->npatches)
+        return PATCH_ERR(c, -1, "field '%s' has %d patches, the grid %d: the field is not of this grid", f->name,
+                         f->npatches, m->npatches);
+    for (int p = 0; p < m->npatches; p++)
+        if (f->pf[p].n != m->patches[p].size)
+            return PATCH_ERR(c, p, "patch '%s' of field '%s' has %d faces, the grid's %d", m->patches[p].name,
+                             f->name, f->pf[p].n, m->patches[p].size);
+    return 0;
+}
+
+/* Constraint types agree on both sides: a grid patch of type empty or
+   cyclic needs that field type, and those field types need that grid
+   patch type. */
+static int check_constraint(const Ctx *c, int p, int kind, Err *e)
+{
+    const Patch *pa = &c->m->patches[p];
+    const char *t = c->f->pf[p].type;
+    int grid_empty = mesh_patch_is_empty(pa), grid_cyclic = pa->type && !strcmp(pa->type, "cyclic");
+    if (grid_empty != (kind == BC_EMPTY))
+        return PATCH_ERR(c, p, "patch '%s' is of type %s in the grid, of type %s in field '%s': %s", pa->name,
+                         pa->type, t, c->f->name,
+                         grid_empty ? "the front and back of a 2-D grid carry no values (type empty)"
+                                    : "only an empty grid patch takes type empty");
+    if (grid_cyclic != (kind == BC_CYCLIC))
+        return PATCH_ERR(c, p, "patch '%s' is of type %s in the grid, of type %s in field '%s': %s", pa->name,
+                         pa->type, t, c->f->name,
+                         grid_cyclic ? "a cyclic grid patch needs type cyclic"
+                                     : "type cyclic needs a cyclic grid patch with a neighbourPatch");
+    return 0;
+}
+
+/* ---- pass 2: each type against the field ---- */
+
+static int vector_only(int kind) { return kind == BC_NO_SLIP || kind == BC_MOVING_WALL; }
+
+static int has_value(int kind) { return kind == BC_FIXED_VALUE || kind == BC_MOVING_WALL || kind == BC_CALCULATED; }
+
+static int parse_patch(const Ctx *c, int p, Err *e)
+{
+    const PatchField *pf = &c->f->pf[p];
+    const char *name = c->m->patches[p].name;
+    int kind = kind_of(pf->type);
+    if (kind < 0)
+        return PATCH_ERR(c, p,
+                         "patch '%s' of field '%s': unknown boundary condition type '%s' (known: fixedValue "
+                         "zeroGradient noSlip movingWall slip symmetryPlane symmetry cyclic empty calculated)",
+                         name, c->f->name, pf->type ? pf->type : "");
+    if (vector_only(kind) && c->f->width != 3)
+        return PATCH_ERR(c, p, "patch '%s': type %s is for vector fields; field '%s' is a scalar field", name,
+                         pf->type, c->f->name);
+    if (has_value(kind) && !pf->value)
+        return PATCH_ERR(c, p, "patch '%s' of field '%s': type %s needs a value entry", name, c->f->name, pf->type);
+    if (check_constraint(c, p, kind, e)) return -1;
+    BcPatch *bp = &c->bc->patch[p];
+    bp->kind = (BcKind)kind;
+    bp->start = c->m->patches[p].start;
+    bp->size = c->m->patches[p].size;
+    bp->partner = -1;
+    size_t nv = (size_t)bp->size * (size_t)c->f->width;
+    if (has_value(kind)) {
+        bp->value = MEM_NEW(double, nv);
+        memcpy(bp->value, pf->value, nv * sizeof *bp->value);
+    } else if (kind == BC_NO_SLIP) {
+        bp->value = MEM_NEW(double, nv);
+    }
+    return 0;
+}
+
+/* ---- pass 3: cyclic pairs ---- */
+
+static double grid_size(const Mesh *m)
+{
+    double lo[3], hi[3];
+    mesh_bounds(m, lo, hi);
+    double d[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+    return geom_norm(d);
+}
+
+static int find_partner(const Ctx *c, int p, Err *e)
+{
+    const Mesh *m = c->m;
+    const Patch *pa = &m->patches[p];
+    if (!pa->neighbour) return PATCH_ERR(c, p, "cyclic patch '%s' has no neighbourPatch in the grid", pa->name);
+    int q = mesh_patch(m, pa->neighbour);
+    if (q < 0)
+        return PATCH_ERR(c, p, "cyclic patch '%s': its neighbourPatch '%s' is no patch of the grid", pa->name,
+                         pa->neighbour);
+    const Patch *qa = &m->patches[q];
+    if (q == p || !qa->type || strcmp(qa->type, "cyclic") || !qa->neighbour || strcmp(qa->neighbour, pa->name))
+        return PATCH_ERR(c, p, "cyclic patch '%s': its neighbourPatch '%s' is not a cyclic patch paired back with it",
+                         pa->name, pa->neighbour);
+    if (qa->size != pa->size)
+        return PATCH_ERR(c, p, "cyclic patch '%s' has %d faces, its neighbourPatch '%s' %d: the faces cannot pair",
+                         pa->name, pa->size, qa->name, qa->size);
+    return q;
+}
+
+/* Face i of p and face i of q: one translation, equal areas, opposite
+   normals. */
+static int check_pairs(const Ctx *c, int p, int q, Err *e)
+{
+    const Mesh *m = c->m;
+    const FvMesh *fm = c->fm;
+    const Patch *pa = &m->patches[p], *qa = &m->patches[q];
+    double tol = 1e-9 * grid_size(m), *T = c->bc->patch[p].shift;
+    for (int i = 0; i < pa->size; i++) {
+        int fp = pa->start + i, fq = qa->start + i;
+        const double *cp = m->face_centre + 3 * fp, *cq = m->face_centre + 3 * fq;
+        double d[3] = {cq[0] - cp[0], cq[1] - cp[1], cq[2] - cp[2]};
+        if (i == 0) memcpy(T, d, sizeof d);
+        double off[3] = {d[0] - T[0], d[1] - T[1], d[2] - T[2]};
+        double dn = geom_dot(fm->nf + 3 * fp, fm->nf + 3 * fq);
+        if (geom_norm(off) > tol)
+            return PATCH_ERR(c, p,
+                             "cyclic patch '%s': face %d (centre (%g %g %g)) and face %d of neighbourPatch '%s' "
+                             "(centre (%g %g %g)) are %g apart from the translation (%g %g %g) of the first pair: "
+                             "the faces do not pair",
+                             pa->name, i, cp[0], cp[1], cp[2], i, qa->name, cq[0], cq[1], cq[2], geom_norm(off), T[0],
+                             T[1], T[2]);
+        if (fabs(fm->mag_sf[fp] - fm->mag_sf[fq]) > 1e-9 * fm->mag_sf[fp] || dn > -1 + 1e-9)
+            return PATCH_ERR(c, p,
+                             "cyclic patch '%s': face %d (area %g) and face %d of neighbourPatch '%s' (area %g) "
+                             "differ in area or are not opposite (n.n = %g): the faces do not pair",
+                             pa->name, i, fm->mag_sf[fp], i, qa->name, fm->mag_sf[fq], dn);
+    }
+    return 0;
+}
+
+static int pair_cyclic(const Ctx *c, int p, Err *e)
+{
+    int q = find_partner(c, p, e);
+    if (q < 0 || check_pairs(c, p, q, e)) return -1;
+    c->bc->patch[p].partner = q;
+    return 0;
+}
+
+/* ---- coefficients ---- */
+
+static int scalar_or_neumann(const Bc *bc, BcKind k)
+{
+    return k == BC_ZERO_GRADIENT || k == BC_EMPTY || ((k == BC_SLIP || k == BC_SYMMETRY_PLANE) && bc->width == 1);
+}
+
+/* The wall normal of boundary face b: the geometry's exact one where the
+   grid has it (a unit vector), else the face's. */
+static void wall_normal(const FvMesh *fm, int b, double *n)
+{
+    const double *bn = fm->m->boundary_normal ? fm->m->boundary_normal + 3 * b : NULL;
+    if (bn && fabs(geom_norm(bn) - 1) < 1e-6)
+        memcpy(n, bn, 3 * sizeof *n);
+    else
+        memcpy(n, fm->nf + 3 * (fm->ninternal + b), 3 * sizeof *n);
+}
+
+/* The coefficients of face i of patch p that never change. */
+static void fill_static(Bc *bc, const BcPatch *bp, int i)
+{
+    const FvMesh *fm = bc->fm;
+    int f = bp->start + i, b = f - fm->ninternal, w = bc->width;
+    double h = fm->h[f];
+    wall_normal(fm, b, bc->n + 3 * b);
+    bc->nbr[b] = -1;
+    for (int k = 0; k < w; k++) {
+        int j = b * w + k;
+        if (bp->value) {
+            bc->a[j] = 0; /* eq. 4.61: xi_F, a Dirichlet value */
+            bc->b[j] = bp->value[i * w + k];
+        } else if (scalar_or_neumann(bc, bp->kind)) {
+            bc->a[j] = 1;
+            bc->b[j] = 0;
+            bc->fixed_grad[b] = 1;
+        } else if (bp->kind == BC_SLIP || bp->kind == BC_SYMMETRY_PLANE) {
+            double nk = bc->n[3 * b + k];
+            bc->a[j] = 1 - nk * nk; /* the diagonal of I - n n^T */
+            bc->b[j] = 0;
+        }
+        /* eq. 4.63 with ht_f = 0: (xi_b - xi_in)/h_f */
+        bc->ga[j] = bc->fixed_grad[b] ? 0 : (bc->a[j] - 1) / h;
+        bc->gb[j] = bc->fixed_grad[b] ? 0 : bc->b[j] / h;
+    }
+}
+
+/* A cyclic face: the partner's owner, its distance, the weights. */
+static void fill_cyclic(Bc *bc, const BcPatch *bp, int i)
+{
+    const FvMesh *fm = bc->fm;
+    const Mesh *m = fm->m;
+    int f = bp->start + i, b = f - fm->ninternal, g = m->patches[bp->partner].start + i;
+    int nb = m->owner[g];
+    const double *x = fm->node + 3 * nb, *cg = m->face_centre + 3 * g;
+    double r[3] = {x[0] - cg[0], x[1] - cg[1], x[2] - cg[2]};
+    double dc = fm->h[f], dn = fabs(geom_dot(r, fm->nf + 3 * g));
+    wall_normal(fm, b, bc->n + 3 * b);
+    bc->nbr[b] = nb;
+    bc->nbr_d[b] = dn;
+    bc->nbr_w[b] = dc / (dc + dn);
+    for (int k = 0; k < bc->width; k++) {
+        int j = b * bc->width + k;
+        bc->a[j] = dn / (dc + dn);
+        bc->ga[j] = -1 / (dc + dn);
+    }
+}
+
+void bc_update(Bc *bc, const double *v)
+{
+    const FvMesh *fm = bc->fm;
+    int w = bc->width;
+    for (int p = 0; p < bc->npatches; p++) {
+        const BcPatch *bp = &bc->patch[p];
+        int slip = (bp->kind == BC_SLIP || bp->kind == BC_SYMMETRY_PLANE) && w == 3;
+        if (!slip && bp->kind != BC_CYCLIC) continue;
+        for (int i = 0; i < bp->size; i++) {
+            int f = bp->start + i, b = f - fm->ninternal;
+            for (int k = 0; k < w; k++) {
+                int j = b * w + k;
+                if (slip) {
+                    const double *u = v + 3 * fm->m->owner[f], *n = bc->n + 3 * b;
+                    /* basicSymmetry, one component at a time: -n_k sum_{l != k} n_l u_l */
+                    bc->b[j] = -n[k] * (geom_dot(n, u) - n[k] * u[k]);
+                    bc->gb[j] = bc->b[j] / fm->h[f];
+                } else {
+                    double xn = v[bc->nbr[b] * w + k];
+                    bc->b[j] = bc->nbr_w[b] * xn;
+                    bc->gb[j] = xn / (fm->h[f] + bc->nbr_d[b]);
+                }
+            }
+        }
+    }
+}
+
+static void allocate(Bc *bc, int nb, int w)
+{
+    size_t n = (size_t)nb * (size_t)w;
+    bc->a = MEM_NEW(double, n);
+    bc->b = MEM_NEW(double, n);
+    bc->ga = MEM_NEW(double, n);
+    bc->gb = MEM_NEW(double, n);
+    bc->fixed_grad = MEM_NEW(char, nb);
+    bc->n = MEM_NEW(double, 3 * (size_t)nb);
+    bc->nbr = MEM_NEW(int, nb);
+    bc->nbr_w = MEM_NEW(double, nb);
+    bc->nbr_d = MEM_NEW(double, nb);
+}
+
+static int parse(Ctx *c, Err *e)
+{
+    if (check_counts(c, e)) return -1;
+    for (int p = 0; p < c->m->npatches; p++)
+        if (parse_patch(c, p, e)) return -1;
+    for (int p = 0; p < c->m->npatches; p++)
+        if (c->bc->patch[p].kind == BC_CYCLIC && pair_cyclic(c, p, e)) return -1;
+    return 0;
+}
+
+int bc_init(Bc *bc, const Field *f, const FvMesh *fm, Err *e)
+{
+    memset(bc, 0, sizeof *bc);
+    bc->fm = fm;
+    bc->width = f->width;
+    bc->npatches = fm->m->npatches;
+    bc->nboundary = fm->nboundary;
+    bc->patch = MEM_NEW(BcPatch, bc->npatches);
+    Ctx c = {f, fm, fm->m, bc};
+    if (parse(&c, e)) {
+        bc_free(bc);
+        return -1;
+    }
+    allocate(bc, fm->nboundary, f->width);
+    for (int p = 0; p < bc->npatches; p++)
+        for (int i = 0; i < bc->patch[p].size; i++) {
+            if (bc->patch[p].kind == BC_CYCLIC)
+                fill_cyclic(bc, &bc->patch[p], i);
+            else
+                fill_static(bc, &bc->patch[p], i);
+        }
+    bc_update(bc, f->v);
+    return 0;
+}
+
+void bc_free(Bc *bc)
+{
+    for (int p = 0; p < bc->npatches && bc->patch; p++) free(bc->patch[p].value);
+    free(bc->patch);
+    free(bc->a);
+    free(bc->b);
+    free(bc->ga);
+    free(bc->gb);
+    free(bc->fixed_grad);
+    free(bc->n);
+    free(bc->nbr);
+    free(bc->nbr_w);
+    free(bc->nbr_d);
+    memset(bc, 0, sizeof *bc);
+}
+
+/* ---- boundary values ---- */
+
+/* Component k of the value of boundary face b of patch bp. */
+static double face_value(const Bc *bc, const BcPatch *bp, int b, const double *v, int k)
+{
+    const FvMesh *fm = bc->fm;
+    int w = bc->width, f = fm->ninternal + b;
+    const double *own = v + (size_t)fm->m->owner[f] * w;
+    if (bp->value) return bp->value[(f - bp->start) * w + k];
+    if (bp->kind == BC_CYCLIC) {
+        double wn = bc->nbr_w[b];
+        return (1 - wn) * own[k] + wn * v[(size_t)bc->nbr[b] * w + k];
+    }
+    if ((bp->kind == BC_SLIP || bp->kind == BC_SYMMETRY_PLANE) && w == 3) {
+        const double *n = bc->n + 3 * b;
+        return own[k] - geom_dot(n, own) * n[k];
+    }
+    return own[k];
+}
+
+void bc_values_component(const Bc *bc, const double *v, int k, double *xb)
+{
+    for (int b = 0; b < bc->nboundary; b++)
+        xb[b] = face_value(bc, &bc->patch[bc->fm->face_patch[b]], b, v, k);
+}
+
+void bc_values(const Bc *bc, const double *v, double *xb)
+{
+    for (int b = 0; b < bc->nboundary; b++)
+        for (int k = 0; k < bc->width; k++)
+            xb[b * bc->width + k] = face_value(bc, &bc->patch[bc->fm->face_patch[b]], b, v, k);
+}
+
+void bc_states(const Bc *bc, const double *v, double *xb)
+{
+    bc_values(bc, v, xb);
+    int w = bc->width;
+    for (int b = 0; b < bc->nboundary; b++)
+        if (bc->nbr[b] >= 0) memcpy(xb + (size_t)b * w, v + (size_t)bc->nbr[b] * w, (size_t)w * sizeof *xb);
+}
