@@ -180,7 +180,7 @@ static int add_unit_word(const char *w, double dims[7], const DictNode *nd, Err 
     return 0;
 }
 
-static int read_dims(const Dict *d, const char *file, double dims[7], Err *e)
+int field_read_dims(const Dict *d, const char *file, double dims[7], Err *e)
 {
     const DictEntry *en = dict_find(d, "dimensions");
     if (!en) return err_set(e, file, 0, "missing keyword 'dimensions'");
@@ -591,7 +591,7 @@ static int read_body(Field *f, const Mesh *m, const Dict *d, const char *file, E
     const DictEntry *obj = dict_find_scoped(d, "FoamFile.object");
     const char *oname = obj && obj->nvals == 1 && obj->vals[0]->text ? obj->vals[0]->text : NULL;
     f->name = oname ? mem_strdup(oname) : base_name(file);
-    if (read_dims(d, file, f->dims, e)) return -1;
+    if (field_read_dims(d, file, f->dims, e)) return -1;
     const DictEntry *ie = dict_find(d, "internalField");
     if (!ie || ie->dict) return err_set(e, file, 0, "missing keyword 'internalField'");
     ValueCtx c = {"internalField", "the mesh", "cells"};

@@ -77,6 +77,10 @@ void field_init(Field *f, const Mesh *m, const char *name, int width, const doub
                 const char *default_type);
 void field_free(Field *f);
 
+/* The `dimensions` entry of d: 7 (or 5) exponents [kg m s K mol A cd], or
+   unit words ([m s^-1]); the message names file and line. */
+int field_read_dims(const Dict *d, const char *file, double dims[7], Err *e);
+
 /* Reads <path> (or path.gz): class must be volScalarField or
    volVectorField; internalField uniform or nonuniform with the right
    count; a boundaryField entry for every patch.  NaN or Inf values are
