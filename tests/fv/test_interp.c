@@ -63,6 +63,7 @@ static void cut_grid(Mesh *out, int N, int flat, const char *geo, int merge)
             printf("merge_mesh: %s\n", e.msg);
             exit(1);
         }
+        merge_stats_free(&ms);
         mesh_free(&cutm);
     }
     mesh_free(&grid);
