@@ -32,6 +32,7 @@ static void sphere_grid(Mesh *out, int n)
         printf("grid: %s\n", e.msg);
         exit(1);
     }
+    merge_stats_free(&ms);
     mesh_free(&grid);
     mesh_free(&cutm);
     fixture_geo_free(&G);

@@ -79,6 +79,7 @@ TEST(cut_sphere)
     MergeStats ms;
     merge_opts_default(&mo);
     EXPECT(merge_mesh(&cutm, &mo, &merged, &ms, &e) == 0, "%s", e.msg);
+    merge_stats_free(&ms);
     FvMesh f;
     EXPECT(fvmesh_init(&f, &merged, &e) == 0, "%s", e.msg);
     EXPECT(fvmesh_has_cartesian(&f), "the merged grid carries its cut-cell data");
