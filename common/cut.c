@@ -108,6 +108,7 @@ typedef struct CutPt {
     int pt;         /* mesh point, -1 until used */
     signed char at; /* -1: inside the edge; 0/1: on the lower/upper vertex */
     char dead;      /* removed by snapping */
+    char side;      /* placed by side_point (a cell's view) */
 } CutPt;
 
 typedef struct Poly {
@@ -212,7 +213,7 @@ static CutPt *cut_insert(Ctx *c, int64_t key)
     size_t i = slot_of(c, key);
     while (c->tab[i].key >= 0 && c->tab[i].key != key) i = (i + 1) & (c->cap - 1);
     if (c->tab[i].key < 0) c->cnt++;
-    c->tab[i] = (CutPt){key, 0, -1, -1, -1, 0};
+    c->tab[i] = (CutPt){key, 0, -1, -1, -1, 0, 0};
     return &c->tab[i];
 }
 
@@ -1294,11 +1295,13 @@ static void side_point(Ctx *c, const int ijk[3], int q, int a, int fluid_lo)
     } else if (!offset_cut(c, a, v, fluid_lo, &s1, &l1)) {
         c->st->ninconsistent++;
         p = cut_insert(c, 3 * v + a);
+        p->side = 1;
         p->at = fluid_lo ? 1 : 0;
         p->s = fluid_lo ? xhi : p0[a];
         return;
     }
     p = cut_insert(c, 3 * v + a);
+    p->side = 1;
     p->leaf = l1;
     p->s = fmin(fmax(s1, p0[a]), xhi);
     if (p->s == p0[a] || p->s - p0[a] < c->snap * h) p->at = 0, p->s = p0[a];
@@ -1313,15 +1316,23 @@ static void local_points(Ctx *c)
         for (int j = 0; j < c->n[1]; j++)
             for (int i = 0; i < c->n[0]; i++) {
                 int64_t v0 = cell_base(c, i, j, k);
-                int m = c->lmask[i + c->n[0] * (j + (int64_t)c->n[1] * k)], g = 0;
-                for (int q = 0; q < 8; q++) g |= (c->cls[cell_corner(c, v0, q)] != 0) << q;
-                if (m == g) continue;
+                int m = c->lmask[i + c->n[0] * (j + (int64_t)c->n[1] * k)], g = 0, on = 0;
+                for (int q = 0; q < 8; q++) {
+                    int64_t v = cell_corner(c, v0, q);
+                    g |= (c->cls[v] != 0) << q;
+                    on |= c->onsurf[v];
+                }
+                if (m == g && !on) continue;
                 const int ijk[3] = {i, j, k};
                 for (int q = 0; q < 8; q++)
                     for (int a = 0; a < 3; a++) {
                         int r = q | 1 << a;
                         if ((q >> a) & 1 || !(((m >> q) ^ (m >> r)) & 1)) continue;
-                        if (cut_find(c, 3 * cell_corner(c, v0, q) + a)) continue;
+                        int64_t vq = cell_corner(c, v0, q), vr = cell_corner(c, v0, r);
+                        const CutPt *p = cut_find(c, 3 * vq + a);
+                        /* an edge from a vertex on the surface takes the
+                           first cell's view whoever placed a point on it */
+                        if (p && (p->side || !(c->onsurf[vq] || c->onsurf[vr]))) continue;
                         side_point(c, ijk, q, a, (m >> q) & 1);
                     }
             }
