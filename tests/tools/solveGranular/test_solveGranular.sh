@@ -22,6 +22,9 @@
 #   - restart: 120 steps in one run against 60 steps (stopAt nextWrite,
 #     binary) and a restart from there (startFrom latestTime): the last
 #     time directories are identical (cmp of rho, U, p, uniform/time);
+#   - a time step far too large (Courant number 3.5, adjustTimeStep off):
+#     the density goes negative at t = 0.2; the run stops with exit 1 and
+#     a message naming the cell, after writing the last good state (0.15);
 #   - SIGINT after 1 s of a long run: exit 0, "Stopped by signal" in the
 #     log, and the last time directory holds rho, U, p and uniform/time.
 set -u
@@ -216,6 +219,20 @@ if rotbox $c; then
     fi
 else
     fail restart_identical "grid tools failed"
+fi
+
+# ---- a negative density stops the run after writing the last good state ----
+rm -rf blow && mkdir blow && cp -r chan0/system chan0/constant chan0/0 blow/
+sed -i 's/internalField uniform (1 0 0)/internalField uniform (0 0 0)/' blow/0/U
+sed -i 's/adjustTimeStep yes;/adjustTimeStep no;/; s/deltaT 0.001;/deltaT 0.05;/; s/writeInterval 2;/writeInterval 0.1;/' \
+    blow/system/controlDict
+"$BIN/solveGranular" -case blow >blow/log 2>blow/err; rc=$?
+if [ $rc -eq 1 ] && grep -q 'Time = 0.2: cell [0-9]* at .*density <= 0' blow/err &&
+    grep -q 'last good state is in time 0.15' blow/err && [ -s blow/0.15/rho ] && [ -s blow/0.15/uniform/time ] &&
+    [ ! -d blow/0.2 ]; then
+    pass negative_density_stops "$(head -n 1 blow/err | cut -c1-120)"
+else
+    fail negative_density_stops "rc $rc, stderr: $(tr '\n' ' ' <blow/err)"
 fi
 
 # ---- SIGINT writes the current state and stops ----
