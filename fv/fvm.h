@@ -1,0 +1,75 @@
+/*
+** fvm.h: implicit finite-volume operators (OpenFOAM's fvm: coefficients
+** of the unknown on an FvMatrix), for the implicit terms of eq. 4.66: the
+** time derivative and the diffusion of one velocity component.
+**
+** Diffusion (eq. 4.62-4.64).  For every face f that is not empty, with
+** D_f = Gamma |S_f| / (h_f + ht_f) (fvmesh.h), the outward normal
+** derivative from the face stencils of interp.h,
+**     du/dn = [u(PLUS) - u(MINUS)] / (h_f + ht_f)            (eq. 4.62)
+** gives the face flux F_f = D_f [u(PLUS) - u(MINUS)] out of the owner.
+** It enters  -sum_f Gamma |S_f| du/dn  (the operator's sign on the left-
+** hand side) with minus sign in the owner's row and plus sign in the
+** neighbour's: both rows see the same number, so sum over all rows of
+** (A u - rhs) is the boundary flux alone and momentum is conserved to
+** round-off.  On a face between two whole Cartesian cells the PLUS and
+** MINUS rows are the two nodes themselves, so there the distance is the
+** true node distance |(x_N - x_C) . n_f| (on a graded grid it differs
+** from 2 h_f).  A stencil's boundary source ncells + b stands for the
+** boundary value a u_in + b of bc.h: a goes on the column of the face's
+** owner, b to the right-hand side.  A boundary face of a Neumann type
+** (fixed_grad) contributes its flux Gamma |S_f| (ga u(MINUS) + gb) (gb the
+** given gradient, ga 0 for zeroGradient); a cyclic face couples its owner
+** C to the periodic neighbour N: F = Gamma |S_f| (u_N - u_C) / (dC + dN)
+** (bc.h: nbr, nbr_d); empty faces contribute nothing.
+**
+** The pattern (fvm_pattern) couples every cell with the sources of its
+** faces' PLUS and MINUS rows and with its cyclic neighbours; the positions
+** of every source in both rows (fvm_init) are found once and kept, so an
+** assembly per time step adds by position without a search.
+*/
+#ifndef KIESEL_FVM_H
+#define KIESEL_FVM_H
+
+#include "bc.h"
+#include "fvmatrix.h"
+#include "fvmesh.h"
+#include "interp.h"
+
+/* The positions of the diffusion operator's entries on one matrix. */
+typedef struct Fvm {
+    const FvMesh *f;
+    const Interp *ip;
+    const Bc *bc;
+    double *dist;   /* nfaces: the distance dividing PLUS - MINUS */
+    int *pos_own;   /* per stencil entry of ip->face: position in the row of
+                       its face's owner (a boundary source: of the source
+                       face's owner), -1 when that row is not ours */
+    int *pos_nbr;   /* ... in the row of its face's neighbour */
+    int *pos_cyc;   /* 2 nboundary: cyclic (owner, nbr) and (owner, owner) */
+} Fvm;
+
+/* Adds to p the couplings of the diffusion operator on f with the face
+   stencils of ip and the cyclic neighbours of bc. */
+void fvm_pattern(FvPattern *p, const FvMesh *f, const Interp *ip, const Bc *bc);
+
+/* Finds the positions on M (built from a pattern fvm_pattern filled);
+   fails when an entry is missing from the pattern. */
+int fvm_init(Fvm *d, const FvMatrix *M, const FvMesh *f, const Interp *ip, const Bc *bc, Err *e);
+void fvm_free(Fvm *d);
+
+/* Adds -sum_f Gamma |S_f| du/dn of component k (of bc's field, whose
+   coefficients bc_update has refreshed) to M: matrix entries and the
+   right-hand side. */
+void fvm_laplacian(const Fvm *d, FvMatrix *M, int k, double gamma);
+
+/* The face fluxes F_f = Gamma |S_f| du/dn (out of the owner) of component
+   k of the cell values u (ncells * width, interleaved) with their
+   boundary values from bc (as the assembly takes them): flux[nfaces]. */
+void fvm_face_flux(const Fvm *d, const double *u, int k, double gamma, double *flux);
+
+/* Adds V c[C] / dt to the diagonal (the unknown's coefficient of the
+   time derivative; c the new density, eq. 4.66 [OURS], doc/theory.md). */
+void fvm_ddt(FvMatrix *M, const FvMesh *f, const double *c, double dt);
+
+#endif

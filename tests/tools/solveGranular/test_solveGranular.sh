@@ -1,0 +1,256 @@
+#!/usr/bin/env bash
+# test_solveGranular.sh: solveGranular, model Newtonian (eq. 5.1, 4.66),
+# end to end on small 2-D cases built with blockGrid, cutCells, mergeCells,
+# voronoiGrid and setFields:
+#   - -help lists every keyword of every dictionary it reads;
+#   - rest: a closed box rotated 30 degrees to the grid (16 x 16, cut and
+#     merged; and the same as a Voronoi grid), rho = 1, U = 0, noSlip, no
+#     gravity: max |U| <= 1e-12 after 1000 steps (fixed deltaT 1e-3);
+#   - conservation: the rotated box with a density jump (setFields: rho 2
+#     in a disc), slip walls, 400 steps: the total mass changes by at most
+#     1e-12 relative at every step (the log's "change since start");
+#   - channel: 20 x 4 cells, fixedValue inflow (rho 1, U (1 0 0)),
+#     zeroGradient outflow, slip walls, from the inflow state with a density
+#     bump of 0.2 (0.3 < x < 0.5) to t = 4: the bump is carried out, U
+#     within 5e-3 of (1 0 0) and rho within 5e-3 of 1 everywhere (measured
+#     1.9e-3 and 1.0e-3: the acoustic waves the zeroGradient outlet
+#     reflects decay slowly);
+#   - bad input: a misspelt model keyword, an unknown boundary type, a
+#     field without an entry for a patch of the grid, fvSolution with an
+#     unknown solver: each a file:line message, exit 1, no time step run
+#     and no time directory written;
+#   - restart: 120 steps in one run against 60 steps (stopAt nextWrite,
+#     binary) and a restart from there (startFrom latestTime): the last
+#     time directories are identical (cmp of rho, U, p, uniform/time);
+#   - a time step far too large (Courant number 3.5, adjustTimeStep off):
+#     the density goes negative at t = 0.2; the run stops with exit 1 and
+#     a message naming the cell, after writing the last good state (0.15);
+#   - SIGINT after 1 s of a long run: exit 0, "Stopped by signal" in the
+#     log, and the last time directory holds rho, U, p and uniform/time.
+set -u
+. "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
+BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
+cd "${KIESEL_TMP:-$(mktemp -d)}" || exit 1
+rm -rf sg && mkdir sg && cd sg || exit 1
+
+H() { printf 'FoamFile { version 2.0; format ascii; class %s; object %s; }\n' "${2:-dictionary}" "$1"; }
+
+# grid DIR NX NY LX LY: the 2-D block grid [0,LX] x [0,LY], one cell thick
+grid() {
+    mkdir -p "$1/system" "$1/constant" "$1/0"
+    { H blockGridDict
+      echo "x { segments (($4 $2 1)); } y { segments (($5 $3 1)); } z { start -0.025; segments ((0.05 1 1)); }"
+      echo 'boundary { xMin { name inlet; } xMax { name outlet; } yMin { name walls; type wall; } yMax { name walls; type wall; }'
+      echo '  zMin { name frontAndBack; type empty; } zMax { name frontAndBack; type empty; } }'
+    } >"$1/system/blockGridDict"
+}
+
+# rotbox DIR [voronoi]: the box 0.6 x 0.6 rotated 30 degrees in the unit square, cut and merged (or Voronoi)
+rotbox() {
+    grid "$1" 16 16 1 1
+    { H geometryDict
+      echo 'surfaces { box { type wall; flow inside; shape box; min (-0.3 -0.3 -1); max (0.3 0.3 1);'
+      echo '  rotate { axis (0 0 1); angle 30; } translate (0.5 0.5 0); } }'
+    } >"$1/system/geometryDict"
+    "$BIN/blockGrid" -case "$1" >"$1/log.blockGrid" 2>&1 || return 1
+    if [ "${2:-}" = voronoi ]; then
+        "$BIN/voronoiGrid" -case "$1" >"$1/log.voronoiGrid" 2>&1
+    else
+        "$BIN/cutCells" -case "$1" >"$1/log.cutCells" 2>&1 && "$BIN/mergeCells" -case "$1" >"$1/log.mergeCells" 2>&1
+    fi
+}
+
+# setup DIR CONTROL UWALL: controlDict (CONTROL entries), schemes, solvers,
+# properties, and fields rho = 1, U = 0 with U's walls of type UWALL
+setup() {
+    { H controlDict; echo "application solveGranular; startFrom latestTime; startTime 0; stopAt endTime; $2"; } \
+        >"$1/system/controlDict"
+    { H fvSchemes; echo 'divSchemes { default Gauss upwind; } interpolationSchemes { default shepard; }'; } \
+        >"$1/system/fvSchemes"
+    { H fvSolution; echo 'solvers { "U.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-13; relTol 0; } }'; } \
+        >"$1/system/fvSolution"
+    { H granularProperties; echo 'model Newtonian; NewtonianCoeffs { mu 0.01; RsT 6; }'; } \
+        >"$1/constant/granularProperties"
+    { H rho volScalarField; echo 'dimensions [1 -3 0 0 0 0 0]; internalField uniform 1;'
+      echo 'boundaryField { ".*" { type zeroGradient; } frontAndBack { type empty; } }'; } >"$1/0/rho"
+    { H U volVectorField; echo 'dimensions [0 1 -1 0 0 0 0]; internalField uniform (0 0 0);'
+      echo "boundaryField { \".*\" { type $3; } frontAndBack { type empty; } }"; } >"$1/0/U"
+}
+
+# maxfield DIR TIME FIELD: the largest |value - REF| over the cells (ascii
+# fields); REF from $REF, "0 0 0" or "1" style, default 0
+maxdev() {
+    /usr/bin/python3 - "$1/$2/$3" "${4:-0}" <<'EOF'
+import re, sys
+t = open(sys.argv[1]).read()
+ref = [float(v) for v in sys.argv[2].split()]
+m = re.search(r'internalField\s+(uniform|nonuniform)\s+(?:List<\w+>\s*\d+\s*)?\((.*?)\)\s*;', t, re.S)
+if m and m.group(1) == 'nonuniform':
+    body = m.group(2)
+    vals = [[float(x) for x in g.split()] for g in re.findall(r'\(([^()]*)\)', body)] if '(' in body \
+        else [[float(x)] for x in body.split()]
+else:
+    u = re.search(r'internalField\s+uniform\s+\(?([^;()]*)\)?\s*;', t)
+    vals = [[float(x) for x in u.group(1).split()]]
+print('%.3e' % max(sum((a - b) ** 2 for a, b in zip(v, ref)) ** 0.5 for v in vals))
+EOF
+}
+lasttime() { (cd "$1" && ls -d [0-9]* | sort -g | tail -n 1); }
+
+# ---- -help ----
+h=$("$BIN/solveGranular" -help 2>&1)
+missing=
+for k in startFrom endTime deltaT writeControl purgeWrite adjustTimeStep maxCo maxDeltaT model NewtonianCoeffs mu RsT \
+    'div(phi,U)' 'div(phi,rho)' shepardCoeffs beta radius boundarySources solver preconditioner tolerance relTol maxIter \
+    petscOptions constant/g; do
+    printf '%s\n' "$h" | grep -qF -- "$k" || missing="$missing $k"
+done
+[ -z "$missing" ] && pass solveGranular_help || fail solveGranular_help "missing:$missing"
+
+# ---- rest: cut and merged, and Voronoi ----
+for kind in cut voronoi; do
+    c=rest_$kind
+    if ! rotbox $c $kind; then fail rest_$kind "grid tools failed"; continue; fi
+    setup $c 'endTime 1; deltaT 0.001; writeControl timeStep; writeInterval 1000; writeFormat ascii; writePrecision 17;' noSlip
+    t0=$(date +%s.%N)
+    "$BIN/solveGranular" -case $c >$c/log 2>&1; rc=$?
+    t1=$(date +%s.%N)
+    steps=$(grep -c '^Time = ' $c/log)
+    d=$(maxdev $c "$(lasttime $c)" U "0 0 0")
+    if [ $rc -eq 0 ] && [ "$steps" -eq 1000 ] && le "$d" 1e-12; then
+        pass rest_$kind "max |U| $d after $steps steps ($(awk -v a=$t0 -v b=$t1 'BEGIN{printf "%.1f", b-a}') s)"
+    else
+        fail rest_$kind "rc $rc, $steps steps, max |U| $d"
+    fi
+done
+
+# ---- conservation: density jump, slip walls ----
+c=cons
+if rotbox $c; then
+    setup $c 'endTime 1; deltaT 0.001; adjustTimeStep yes; maxCo 0.25; writeControl timeStep; writeInterval 400; writeFormat ascii;' slip
+    sed -i 's/endTime 1;/endTime 1000;/; s/stopAt endTime/stopAt nextWrite/' $c/system/controlDict
+    { H setFieldsDict
+      echo 'defaultFieldValues ( volScalarFieldValue rho 1 ); regions ( cylinderToCell { p1 (0.45 0.5 -1); p2 (0.45 0.5 1); radius 0.15;'
+      echo '  fieldValues ( volScalarFieldValue rho 2 ); } );'; } >$c/system/setFieldsDict
+    "$BIN/setFields" -case $c >$c/log.setFields 2>&1
+    "$BIN/solveGranular" -case $c >$c/log 2>&1; rc=$?
+    worst=$(sed -n 's/.*change since start = \([^ ]*\) (relative)/\1/p' $c/log |
+            awk '{ v = $1 < 0 ? -$1 : $1; if (v > m) m = v } END { printf "%.3e", m + 0 }')
+    steps=$(grep -c '^Time = ' $c/log)
+    u=$(maxdev $c "$(lasttime $c)" U "0 0 0")
+    if [ $rc -eq 0 ] && [ "$steps" -eq 400 ] && le "$worst" 1e-12 && ! le "$u" 1e-3; then
+        pass mass_conserved "largest relative change $worst over $steps steps (max |U| $u)"
+    else
+        fail mass_conserved "rc $rc, $steps steps, largest relative change $worst, max |U| $u"
+    fi
+else
+    fail mass_conserved "grid tools failed"
+fi
+
+# ---- channel: inflow to outflow ----
+c=chan
+grid $c 20 4 1 0.2
+"$BIN/blockGrid" -case $c >$c/log.blockGrid 2>&1
+setup $c 'endTime 4; deltaT 0.001; adjustTimeStep yes; maxCo 0.25; writeControl adjustableRunTime; writeInterval 2; writeFormat ascii; writePrecision 12;' slip
+{ H rho volScalarField; echo 'dimensions [1 -3 0 0 0 0 0]; internalField uniform 1;'
+  echo 'boundaryField { inlet { type fixedValue; value uniform 1; } outlet { type zeroGradient; } walls { type zeroGradient; } frontAndBack { type empty; } }'; } >$c/0/rho
+{ H U volVectorField; echo 'dimensions [0 1 -1 0 0 0 0]; internalField uniform (0 0 0);'
+  echo 'boundaryField { inlet { type fixedValue; value uniform (1 0 0); } outlet { type zeroGradient; } walls { type slip; } frontAndBack { type empty; } }'; } >$c/0/U
+sed -i 's/internalField uniform (0 0 0)/internalField uniform (1 0 0)/' $c/0/U
+rm -rf chan0 && cp -r $c chan0   # the bad-input cases start from this
+{ H setFieldsDict
+  echo 'defaultFieldValues ( volScalarFieldValue rho 1 ); regions ( boxToCell { box (0.3 -1 -1) (0.5 1 1);'
+  echo '  fieldValues ( volScalarFieldValue rho 1.2 ); } );'; } >$c/system/setFieldsDict
+"$BIN/setFields" -case $c >$c/log.setFields 2>&1
+d0=$(maxdev $c 0 rho 1)
+"$BIN/solveGranular" -case $c >$c/log 2>&1; rc=$?
+last=$(lasttime $c)
+du=$(maxdev $c "$last" U "1 0 0"); dr=$(maxdev $c "$last" rho 1)
+if [ $rc -eq 0 ] && [ "$last" = 4 ] && le 0.19 "$d0" && le "$du" 5e-3 && le "$dr" 5e-3; then
+    pass channel_inflow_state "t = 4: max |U - (1 0 0)| $du, max |rho - 1| $dr"
+else
+    fail channel_inflow_state "rc $rc, last time $last, max |U - (1 0 0)| $du, max |rho - 1| $dr"
+fi
+
+# ---- bad input ----
+# bad NAME FILE SED PATTERN: edits a copy of the channel case and expects
+# PATTERN on stderr, exit 1, no step and no new time directory
+bad() {
+    rm -rf bad_$1 && mkdir bad_$1 && cp -r chan0/system chan0/constant chan0/0 bad_$1/
+    sed -i "$3" bad_$1/$2
+    before=$(listing bad_$1)
+    "$BIN/solveGranular" -case bad_$1 >bad_$1.out 2>bad_$1.err; local rc=$?
+    if [ $rc -eq 1 ] && grep -qE -- "$4" bad_$1.err && ! grep -q '^Time = ' bad_$1.out &&
+        [ "$before" = "$(listing bad_$1)" ]; then
+        pass bad_$1 "$(head -n 1 bad_$1.err)"
+    else
+        fail bad_$1 "rc $rc, stderr: $(head -n 2 bad_$1.err | tr '\n' ' ')"
+    fi
+}
+bad model_keyword constant/granularProperties 's/^model Newtonian/modle Newtonian/' 'granularProperties:[0-9]+: .*modle'
+bad model_word constant/granularProperties 's/^model Newtonian/model Newtonain/' 'granularProperties:[0-9]+: .*Newtonain'
+bad boundary_type 0/U 's/type slip;/type slipp;/' '0/U:[0-9]+: .*slipp'
+bad patch_missing 0/rho 's/outlet { type zeroGradient; }//' '0/rho(:[0-9]+)?: .*outlet'
+bad solver system/fvSolution 's/PBiCGStab/PBiCGStabb/' 'fvSolution:[0-9]+: .*PBiCGStabb'
+bad div_scheme system/fvSchemes 's/Gauss upwind/Gauss linear/' 'fvSchemes:[0-9]+: .*Gauss upwind'
+
+# ---- restart: bit-identical continuation from binary output ----
+c=rs
+if rotbox $c; then
+    setup $c 'endTime 1000; deltaT 0.001; adjustTimeStep yes; maxCo 0.25; writeControl timeStep; writeInterval 60; writeFormat binary;' slip
+    sed -i 's/stopAt endTime/stopAt nextWrite/' $c/system/controlDict
+    { H setFieldsDict
+      echo 'defaultFieldValues ( volScalarFieldValue rho 1 ); regions ( boxToCell { box (0.3 0.3 -1) (0.5 0.7 1);'
+      echo '  fieldValues ( volScalarFieldValue rho 1.5 ); } );'; } >$c/system/setFieldsDict
+    "$BIN/setFields" -case $c >$c/log.setFields 2>&1
+    rm -rf rs2 && cp -r $c rs2
+    sed -i 's/writeInterval 60/writeInterval 120/' $c/system/controlDict
+    "$BIN/solveGranular" -case $c >$c/log 2>&1; rc1=$?      # 120 steps in one run
+    "$BIN/solveGranular" -case rs2 >rs2/log1 2>&1; rc2=$?   # 60 steps
+    sed -i 's/stopAt nextWrite/stopAt endTime/; s/endTime 1000/endTime '"$(lasttime $c)"'/' rs2/system/controlDict
+    "$BIN/solveGranular" -case rs2 >rs2/log2 2>&1; rc3=$?   # restart, to the same end
+    a=$(lasttime $c); b=$(lasttime rs2); same=yes
+    for f in rho U p uniform/time; do cmp -s "$c/$a/$f" "rs2/$b/$f" || same="no ($f differs)"; done
+    n2=$(grep -c '^Time = ' rs2/log2)
+    if [ $rc1$rc2$rc3 = 000 ] && [ "$a" = "$b" ] && [ "$same" = yes ] && [ "$n2" -eq 60 ]; then
+        pass restart_identical "time $a after 120 steps = 60 + 60 restarted, files identical"
+    else
+        fail restart_identical "rc $rc1 $rc2 $rc3, times $a and $b, $n2 steps after the restart, identical: $same"
+    fi
+else
+    fail restart_identical "grid tools failed"
+fi
+
+# ---- a negative density stops the run after writing the last good state ----
+rm -rf blow && mkdir blow && cp -r chan0/system chan0/constant chan0/0 blow/
+sed -i 's/internalField uniform (1 0 0)/internalField uniform (0 0 0)/' blow/0/U
+sed -i 's/adjustTimeStep yes;/adjustTimeStep no;/; s/deltaT 0.001;/deltaT 0.05;/; s/writeInterval 2;/writeInterval 0.1;/' \
+    blow/system/controlDict
+"$BIN/solveGranular" -case blow >blow/log 2>blow/err; rc=$?
+if [ $rc -eq 1 ] && grep -q 'Time = 0.2: cell [0-9]* at .*density <= 0' blow/err &&
+    grep -q 'last good state is in time 0.15' blow/err && [ -s blow/0.15/rho ] && [ -s blow/0.15/uniform/time ] &&
+    [ ! -d blow/0.2 ]; then
+    pass negative_density_stops "$(head -n 1 blow/err | cut -c1-120)"
+else
+    fail negative_density_stops "rc $rc, stderr: $(tr '\n' ' ' <blow/err)"
+fi
+
+# ---- SIGINT writes the current state and stops ----
+c=sig
+grid $c 64 64 1 1
+"$BIN/blockGrid" -case $c >$c/log.blockGrid 2>&1
+setup $c 'endTime 1000; deltaT 0.0001; writeControl timeStep; writeInterval 100000; writeFormat binary;' noSlip
+sed -i 's/inlet { type fixedValue; value uniform (1 0 0); }//' $c/0/U
+"$BIN/solveGranular" -case $c >$c/log 2>&1 &
+pid=$!
+sleep 1
+kill -INT $pid
+wait $pid; rc=$?
+last=$(lasttime $c); complete=yes
+for f in rho U p uniform/time; do [ -s "$c/$last/$f" ] || complete="no ($f missing)"; done
+if [ $rc -eq 0 ] && [ "$last" != 0 ] && [ "$complete" = yes ] && grep -q '^Stopped by signal 2' $c/log &&
+    grep -q "^End" $c/log; then
+    pass sigint_writes "stopped at time $last after $(grep -c '^Time = ' $c/log) steps, time directory complete"
+else
+    fail sigint_writes "rc $rc, last time $last, complete: $complete"
+fi

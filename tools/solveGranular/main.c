@@ -1,0 +1,196 @@
+/*
+** solveGranular: continuum granular flow on cut-cell and Voronoi grids
+** (ICCM, thesis ch. 4).  Model Newtonian: the compressible Navier-Stokes
+** equations of eq. 5.1 by the semi-implicit Euler of eq. 4.66
+** (newtonian.h).  See doc/tools/solveGranular.md.
+**
+** Reads like OpenFOAM's scalarTransportFoam: the case, the properties,
+** the schemes and solvers, the grid, the fields at the start time, then
+** the time loop: Courant number, time step, one step of the model, the
+** log, the writes.  Everything that can be wrong in the input is found
+** before the first step; a step that fails (a solve, a NaN, a density
+** <= 0) writes the last good state and stops with status 1; SIGINT or
+** SIGTERM writes the current state and stops with status 0.
+*/
+#include "args.h"
+#include "case.h"
+#include "fvtime.h"
+#include "newtonian.h"
+#include "state.h"
+
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static const ArgDict dicts[] = {
+    {"system/controlDict", runtime_control_keys, "adjustTimeStep and maxCo: the speed is |u.n| + sqrt(RsT) (explicit pressure); set maxCo 0.25"},
+    {"constant/granularProperties", props_keys, "constant/g (optional, no file: no gravity): dimensions [0 1 -2 0 0 0 0]; value (gx gy gz);"},
+    {"constant/granularProperties: NewtonianCoeffs", props_newtonian_keys, NULL},
+    {"system/fvSchemes: divSchemes", gran_div_keys, NULL},
+    {"system/fvSchemes: interpolationSchemes", interp_keys, NULL},
+    {"system/fvSchemes: interpolationSchemes.shepardCoeffs", interp_shepard_keys, NULL},
+    {"system/fvSolution: solvers.Ux, Uy, Uz", linsolve_keys, NULL},
+    {0}};
+
+static const ToolInfo tool = {"solveGranular", "continuum granular flow (ICCM, eq. 4.66): model Newtonian (eq. 5.1)",
+                              NULL, dicts, 0};
+
+static volatile sig_atomic_t stop_signal;
+
+static void on_signal(int sig) { stop_signal = sig; }
+
+static void catch_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+static Dict *read_system(const Case *c, const char *rel)
+{
+    Err e;
+    char *path = case_path(c, rel);
+    Dict *d = dict_read(path, &e);
+    free(path);
+    if (!d) err_die(&e);
+    return d;
+}
+
+static void print_warnings(const Field *f)
+{
+    for (int i = 0; i < f->nwarn; i++) err_warn("%s", f->warn[i]);
+}
+
+/* The run's state and what writing it needs. */
+typedef struct Run {
+    Case cs;
+    Mesh m;
+    Field rho, U, p;
+    Granular g;
+    TimeLoop tl;
+    double written;    /* the last time on disk */
+} Run;
+
+static void write_time(Run *r, double t)
+{
+    Err e;
+    char name[64];
+    Field *f[3] = {&r->rho, &r->U, &r->p};
+    gran_pressure(&r->g, &r->p);
+    if (state_write(&r->cs, &r->m, f, 3, t, r->tl.index, r->tl.dt, r->tl.dt0, name, &e)) err_die(&e);
+    r->written = t;
+}
+
+static void log_step(const Args *a, Run *r, double mass0)
+{
+    for (int j = 0; j < r->g.naxes; j++) {
+        const LinSettings *s = &r->g.set[j];
+        const LinStats *st = &r->g.st[j];
+        printf("%s%s:  Solving for %s, Initial residual = %g, Final residual = %g, No Iterations %d\n",
+               strcmp(s->precon, "none") ? s->precon : "", s->solver, s->name, st->initial, st->final, st->iters);
+    }
+    double mass = gran_mass(&r->g);
+    printf("Total mass = %.15g, change since start = %.3e (relative)\n", mass, (mass - mass0) / mass0);
+    log_exec(a);
+    const Control *c = r->tl.c;
+    double done = r->tl.value - r->tl.start, wall = args_wall(a);
+    if (done > 0) printf("Estimated time to finish = %.3g s\n", wall / done * fmax(0, c->endTime - r->tl.value));
+    printf("\n");
+}
+
+static void read_case(Run *r, const Args *a, Interp *ip, FvMesh *fm, Start *st)
+{
+    Err e;
+    if (case_open(&r->cs, a->case_dir, CASE_CONTROL_TIME, &e)) err_die(&e);
+    GranularProps pr;
+    if (props_read(&pr, r->cs.dir, &e)) err_die(&e);
+    Dict *schemes = read_system(&r->cs, "system/fvSchemes"), *sol = read_system(&r->cs, "system/fvSolution");
+    InterpOpts io;
+    if (gran_read_div(schemes, &e) || interp_read_opts(schemes, &io, &e) || state_start(&r->cs, st, &e))
+        err_die(&e);
+    char *mpath = case_path(&r->cs, "constant/polyMesh");
+    if (mesh_read(&r->m, mpath, &e) || fvmesh_init(fm, &r->m, &e) || interp_init(ip, fm, &io, mpath, &e)) err_die(&e);
+    if (state_read_field(&r->rho, &r->m, &r->cs, st->name, "rho", 1, &e) ||
+        state_read_field(&r->U, &r->m, &r->cs, st->name, "U", 3, &e))
+        err_die(&e);
+    print_warnings(&r->rho);
+    print_warnings(&r->U);
+    if (gran_init(&r->g, fm, ip, &pr, &r->rho, &r->U, sol, &e)) err_die(&e);
+    double zero = 0;
+    field_init(&r->p, &r->m, "p", 1, &zero, "calculated");
+    r->p.dims[0] = 1, r->p.dims[1] = -1, r->p.dims[2] = -2;
+    free(mpath);
+    dict_free(schemes);
+    dict_free(sol);
+}
+
+static void run(const Args *a, Run *r, const Start *st)
+{
+    Err e;
+    double mass0 = gran_mass(&r->g);
+    timeloop_init(&r->tl, &r->cs.control, st->value, st->index, st->dt);
+    r->written = st->value;
+    printf("\nStarting time loop at Time = %s, total mass %.15g\n\n", st->name, mass0);
+    while (timeloop_running(&r->tl) && !stop_signal) {
+        int changed = runtime_reread(&r->cs.control, &e);
+        if (changed < 0) err_warn("%s (keeping the old settings)", e.msg);
+        if (changed > 0) timeloop_control_changed(&r->tl);
+        double mean, co;
+        gran_flux(&r->g);
+        co = gran_courant(&r->g, r->tl.dt, &mean);
+        printf("Courant Number mean: %g max: %g\n", mean, co);
+        timeloop_courant(&r->tl, co);
+        double t0 = r->tl.value;
+        timeloop_advance(&r->tl, args_wall(a));
+        char name[64];
+        runtime_time_name(&r->cs.control, r->tl.value, name);
+        printf("deltaT = %g\n", r->tl.dt);
+        log_time(a, name);
+        if (gran_step(&r->g, r->tl.dt, &e)) {
+            fprintf(stderr, "solveGranular: Time = %s: %s\n", name, e.msg);
+            if (r->written != t0) write_time(r, t0);
+            runtime_time_name(&r->cs.control, t0, name);
+            err_fatal("stopped; the last good state is in time %s", name);
+        }
+        log_step(a, r, mass0);
+        if (r->tl.write_now) write_time(r, r->tl.value);
+    }
+    if (stop_signal) {
+        if (r->written != r->tl.value) write_time(r, r->tl.value);
+        printf("Stopped by signal %d at Time = %.15g; the state is written\n", (int)stop_signal, r->tl.value);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    Args a;
+    args_parse(argc, argv, &tool, &a);
+    if (a.argc) err_fatal("unexpected argument '%s'", a.argv[0]);
+    args_banner(&a, &tool);
+    Run r;
+    FvMesh fm;
+    Interp ip;
+    Start st;
+    memset(&r, 0, sizeof r);
+    read_case(&r, &a, &ip, &fm, &st);
+    catch_signals();
+    run(&a, &r, &st);
+    log_end(&a);
+    gran_free(&r.g);
+    interp_free(&ip);
+    fvmesh_free(&fm);
+    field_free(&r.p);
+    field_free(&r.U);
+    field_free(&r.rho);
+    mesh_free(&r.m);
+    case_free(&r.cs);
+    linsolve_finalize();
+    args_free(&a);
+    return 0;
+}

@@ -1,0 +1,271 @@
+/*
+** newtonian.c: model Newtonian (newtonian.h): eq. 5.1 by eq. 4.66.
+**
+** The step computes the new state into its own arrays (rho1, U1) and
+** copies it into the fields only when every solve converged and every
+** value is finite with a positive density, so a failed step loses
+** nothing.  Components are solved in order x, y, z on one matrix, each
+** assembled anew (the boundary coefficients a, b differ per component:
+** slip).  The velocity component along the empty axis of a 2-D grid is
+** not solved and keeps its value, as OpenFOAM's solvers do.
+*/
+#include "newtonian.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fvc.h"
+#include "mem.h"
+
+const DictKey gran_div_keys[] = {
+    {"default", "Gauss upwind", "convection of rho and rho u: Gauss upwind (eq. 4.60; none when both below are given)"},
+    {"div(phi,rho)", "Gauss upwind", "convection in the continuity equation"},
+    {"div(phi,U)", "Gauss upwind", "convection of momentum"},
+    {NULL, NULL, NULL}};
+
+/* Is entry en's value the two words "Gauss upwind" (or "none" when
+   none_ok)? */
+static int upwind_entry(const DictEntry *en, int none_ok)
+{
+    if (en->nvals == 1 && none_ok) return en->vals[0]->kind == DN_WORD && !strcmp(en->vals[0]->text, "none");
+    return en->nvals == 2 && en->vals[0]->kind == DN_WORD && en->vals[1]->kind == DN_WORD &&
+           !strcmp(en->vals[0]->text, "Gauss") && !strcmp(en->vals[1]->text, "upwind");
+}
+
+int gran_read_div(const Dict *fvschemes, Err *e)
+{
+    const Dict *d = dict_subdict_opt(fvschemes, "divSchemes");
+    if (!d) return 0;
+    if (dict_check_keys(d, gran_div_keys, e)) return -1;
+    for (size_t i = 0; i < d->n; i++) {
+        const DictEntry *en = &d->entries[i];
+        if (en->dict || !upwind_entry(en, !strcmp(en->key, "default")))
+            return err_set(e, en->file, en->line,
+                           "divSchemes: %s: only 'Gauss upwind' is implemented (eq. 4.60; the limited linear "
+                           "scheme is not yet)",
+                           en->key);
+    }
+    return 0;
+}
+
+/* Impermeable boundary faces of U: noSlip, movingWall, slip, symmetryPlane. */
+static void mark_walls(Granular *g)
+{
+    const FvMesh *f = g->f;
+    g->wall = mem_calloc((size_t)f->nboundary + 1, 1);
+    for (int p = 0; p < g->bc_U.npatches; p++) {
+        const BcPatch *bp = &g->bc_U.patch[p];
+        int w = bp->kind == BC_NO_SLIP || bp->kind == BC_MOVING_WALL || bp->kind == BC_SLIP ||
+                bp->kind == BC_SYMMETRY_PLANE;
+        for (int j = 0; j < bp->size; j++) g->wall[bp->start + j - f->ninternal] = (char)w;
+    }
+}
+
+static void alloc_work(Granular *g)
+{
+    size_t nc = (size_t)g->f->ncells + 1, nf = (size_t)g->f->nfaces + 1, nb = (size_t)g->f->nboundary + 1;
+    g->phi = mem_calloc(nf, sizeof(double));
+    g->cf = mem_alloc(nf * sizeof(double));
+    g->pf = mem_calloc(nf, sizeof(double));
+    g->rho1 = mem_alloc(nc * sizeof(double));
+    g->U1 = mem_alloc(3 * nc * sizeof(double));
+    g->rhoU = mem_alloc(3 * nc * sizeof(double));
+    g->conv = mem_alloc(3 * nc * sizeof(double));
+    g->force = mem_alloc(3 * nc * sizeof(double));
+    g->crho = mem_alloc(nc * sizeof(double));
+    g->x = mem_alloc(nc * sizeof(double));
+    g->uk = mem_alloc(nc * sizeof(double));
+    g->xb = mem_alloc(3 * nb * sizeof(double));
+    g->xb3 = mem_alloc(3 * nb * sizeof(double));
+    g->xbr = mem_alloc(nb * sizeof(double));
+    double c = sqrt(g->pr.RsT);
+    for (size_t i = 0; i < nf; i++) g->cf[i] = c;
+}
+
+/* The matrix, its diffusion positions and the solvers of the components. */
+static int init_solvers(Granular *g, const Dict *fvsolution, Err *e)
+{
+    FvPattern pat;
+    fvpattern_init(&pat, g->f);
+    fvm_pattern(&pat, g->f, g->ip, &g->bc_U);
+    fvmatrix_init(&g->M, &pat);
+    if (fvm_init(&g->op, &g->M, g->f, g->ip, &g->bc_U, e)) return -1;
+    static const char *const names[3] = {"Ux", "Uy", "Uz"};
+    for (int k = 0; k < 3; k++)
+        if (k != g->f->empty_axis) g->axis[g->naxes++] = k;
+    for (int j = 0; j < g->naxes; j++) {
+        if (linsolve_settings(&g->set[j], fvsolution, names[g->axis[j]], e)) return -1;
+        g->L[j] = linsolve_new(&g->set[j], &g->M, e);
+        if (!g->L[j]) return -1;
+    }
+    return 0;
+}
+
+int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, Field *rho, Field *U,
+              const Dict *fvsolution, Err *e)
+{
+    memset(g, 0, sizeof *g);
+    g->f = f;
+    g->ip = ip;
+    g->pr = *pr;
+    g->rho = rho;
+    g->U = U;
+    if (bc_init(&g->bc_rho, rho, f, e)) return -1;
+    if (bc_init(&g->bc_U, U, f, e)) return -1;
+    mark_walls(g);
+    alloc_work(g);
+    return linsolve_init(e) || init_solvers(g, fvsolution, e) ? -1 : 0;
+}
+
+void gran_free(Granular *g)
+{
+    for (int j = 0; j < g->naxes; j++) {
+        linsolve_free(g->L[j]);
+        linsolve_settings_free(&g->set[j]);
+    }
+    if (g->op.dist) fvm_free(&g->op);
+    if (g->M.off) fvmatrix_free(&g->M);
+    if (g->bc_U.fm) bc_free(&g->bc_U);
+    if (g->bc_rho.fm) bc_free(&g->bc_rho);
+    void *arr[] = {g->wall, g->phi, g->cf,  g->pf, g->rho1, g->U1, g->rhoU, g->conv,
+                   g->force, g->crho, g->x, g->uk, g->xb,   g->xb3, g->xbr};
+    for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
+    memset(g, 0, sizeof *g);
+}
+
+/* Component k of the vector field v (ncells * 3) into out. */
+static void component(const FvMesh *f, const double *v, int k, double *out)
+{
+    for (int c = 0; c < f->ncells; c++) out[c] = v[3 * c + k];
+}
+
+void gran_flux(Granular *g)
+{
+    const FvMesh *f = g->f;
+    const Stencil *s = &g->ip->face;
+    bc_update(&g->bc_U, g->U->v);
+    memset(g->phi, 0, sizeof(double) * (size_t)f->nfaces);
+    for (int k = 0; k < 3; k++) {
+        component(f, g->U->v, k, g->uk);
+        bc_values_component(&g->bc_U, g->U->v, k, g->xb);
+        for (int i = 0; i < f->nfaces; i++) {
+            if (f->empty_face[i] || (i >= f->ninternal && g->wall[i - f->ninternal])) continue;
+            double uf = stencil_apply(s, interp_row(i, INTERP_CENTRE), f->ncells, g->uk, g->xb); /* eq. 4.61 */
+            g->phi[i] += uf * f->m->face_area[3 * i + k];
+        }
+    }
+}
+
+double gran_courant(Granular *g, double dt, double *mean)
+{
+    const FvMesh *f = g->f;
+    double co = fvc_courant(f, g->phi, g->cf, dt, g->x), sum = 0;
+    for (int c = 0; c < f->nowned; c++) sum += g->x[c];
+    *mean = f->nowned ? sum / f->nowned : 0;
+    return co;
+}
+
+double gran_mass(const Granular *g) { return fvc_total(g->f, g->rho->v); }
+
+/* Face pressures p_f (newtonian.h) of p = RsT rho. */
+static void face_pressure(Granular *g)
+{
+    const FvMesh *f = g->f;
+    const Mesh *m = f->m;
+    double R = g->pr.RsT;
+    for (int c = 0; c < f->ncells; c++) g->crho[c] = R * g->rho->v[c];
+    bc_values(&g->bc_rho, g->rho->v, g->xbr);
+    for (int b = 0; b < f->nboundary; b++)
+        g->xbr[b] = g->wall[b] ? g->crho[m->owner[f->ninternal + b]] : R * g->xbr[b];
+    for (int i = 0; i < f->nfaces; i++) {
+        if (f->empty_face[i]) g->pf[i] = 0;
+        else if (i >= f->ninternal) g->pf[i] = g->xbr[i - f->ninternal];
+        else if (f->cartesian_face[i]) g->pf[i] = 0.5 * (g->crho[m->owner[i]] + g->crho[m->neighbour[i]]);
+        else g->pf[i] = stencil_apply(&g->ip->face, interp_row(i, INTERP_CENTRE), f->ncells, g->crho, g->xbr);
+    }
+}
+
+/* The explicit parts: new density, momentum convection, pressure force. */
+static void explicit_terms(Granular *g, double dt)
+{
+    const FvMesh *f = g->f;
+    const double *rho = g->rho->v, *U = g->U->v;
+    bc_update(&g->bc_rho, rho);
+    bc_states(&g->bc_rho, rho, g->xbr);
+    fvc_div_upwind(f, g->phi, rho, g->xbr, 1, g->conv); /* eq. 4.60 */
+    for (int c = 0; c < f->ncells; c++) g->rho1[c] = rho[c] - dt / f->m->cell_vol[c] * g->conv[c];
+    bc_states(&g->bc_U, U, g->xb);
+    for (int b = 0; b < f->nboundary; b++)
+        for (int k = 0; k < 3; k++) g->xb3[3 * b + k] = g->xbr[b] * g->xb[3 * b + k];
+    for (int c = 0; c < f->ncells; c++)
+        for (int k = 0; k < 3; k++) g->rhoU[3 * c + k] = rho[c] * U[3 * c + k];
+    fvc_div_upwind(f, g->phi, g->rhoU, g->xb3, 3, g->conv);
+    face_pressure(g);
+    fvc_pressure_force(f, g->pf, g->force);
+}
+
+/* Assembles and solves component k (solver j) into U1. */
+static int solve_component(Granular *g, int j, double dt, Err *e)
+{
+    const FvMesh *f = g->f;
+    int k = g->axis[j];
+    FvMatrix *M = &g->M;
+    fvmatrix_zero(M);
+    fvm_ddt(M, f, g->rho1, dt);
+    fvm_laplacian(&g->op, M, k, g->pr.mu); /* eq. 4.62-4.64 */
+    for (int c = 0; c < M->nrows; c++) {
+        double V = f->m->cell_vol[c];
+        M->rhs[c] += V * g->rhoU[3 * c + k] / dt - g->conv[3 * c + k] - g->force[3 * c + k] +
+                     g->rho->v[c] * g->pr.g[k] * V;
+    }
+    component(f, g->U->v, k, g->x);
+    if (linsolve_solve(g->L[j], g->x, &g->st[j], e)) return -1;
+    for (int c = 0; c < f->ncells; c++) g->U1[3 * c + k] = g->x[c];
+    return 0;
+}
+
+/* The first cell whose new state is not finite or whose density is not
+   positive, or -1. */
+static int bad_cell(const Granular *g)
+{
+    for (int c = 0; c < g->f->nowned; c++) {
+        const double *u = g->U1 + 3 * c;
+        if (!(g->rho1[c] > 0) || !isfinite(g->rho1[c]) || !isfinite(u[0] + u[1] + u[2])) return c;
+    }
+    return -1;
+}
+
+int gran_step(Granular *g, double dt, Err *e)
+{
+    const FvMesh *f = g->f;
+    explicit_terms(g, dt);
+    memcpy(g->U1, g->U->v, sizeof(double) * 3 * (size_t)f->ncells);
+    for (int j = 0; j < g->naxes; j++)
+        if (solve_component(g, j, dt, e)) return -1;
+    int c = bad_cell(g);
+    if (c >= 0) {
+        const double *x = f->node + 3 * c, *u = g->U1 + 3 * c;
+        return err_set(e, NULL, 0,
+                       "cell %d at (%g %g %g): %s: density %g, velocity (%g %g %g) (time step %g too large for "
+                       "the flow, or bad boundary conditions)",
+                       c, x[0], x[1], x[2], isfinite(g->rho1[c]) && isfinite(u[0] + u[1] + u[2]) ? "density <= 0" : "not a number",
+                       g->rho1[c], u[0], u[1], u[2], dt);
+    }
+    memcpy(g->rho->v, g->rho1, sizeof(double) * (size_t)f->ncells);
+    memcpy(g->U->v, g->U1, sizeof(double) * 3 * (size_t)f->ncells);
+    return 0;
+}
+
+void gran_pressure(Granular *g, Field *p)
+{
+    const FvMesh *f = g->f;
+    face_pressure(g);
+    for (int c = 0; c < f->ncells; c++) p->v[c] = g->crho[c];
+    for (int q = 0; q < p->npatches; q++) {
+        PatchField *pf = &p->pf[q];
+        if (!pf->value) continue;
+        int start = f->m->patches[q].start;
+        for (int j = 0; j < pf->n; j++) pf->value[j] = g->pf[start + j];
+    }
+}

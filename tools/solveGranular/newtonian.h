@@ -1,0 +1,87 @@
+/*
+** newtonian.h: solveGranular's model Newtonian, the isothermal
+** compressible Navier-Stokes equations of eq. 5.1,
+**     d_t rho + div(rho u) = 0,
+**     d_t(rho u) + div(rho u u^T) - div(mu grad u) + grad p = rho g,
+**     p = RsT rho,
+** advanced by the semi-implicit Euler of eq. 4.66: explicit upwind
+** convection with the interpolated face velocity (eq. 4.60-4.61), explicit
+** pressure, implicit diffusion one velocity component at a time.
+**
+** One step from (rho^m, u^m) over dt:
+**   phi_f = u_f . S_f, u_f the CENTRE row of the face (0 on walls: noSlip,
+**           slip, movingWall and symmetryPlane are impermeable)
+**   rho^{m+1} = rho^m - dt/V sum_f B(rho, phi)              (eq. 4.60)
+**   V (rho^{m+1} u^{m+1} - (rho u)^m) / dt
+**       = -sum_f B(rho u, phi) - sum_f p_f S_f + sum_f mu |S_f| du^{m+1}/dn
+**         + rho^m g V                                        (eq. 4.66 [OURS])
+** with p_f the mean of the two cells on a face between whole Cartesian
+** cells (eq. 4.61), the interpolated CENTRE value on the other internal
+** faces, the owner's at a wall (zero normal gradient, spec §4.3) and
+** RsT times the density's boundary value elsewhere.  The unknown is u
+** itself with the new density on the diagonal (doc/theory.md: the same as
+** the thesis's (rho u)^{m+1} / rho^m to O(dt), boundary conditions stay in
+** u, momentum is conserved).  A step that fails (a linear solve, a NaN, a
+** density <= 0) leaves the state as it was, so the caller can write the
+** last good one.
+*/
+#ifndef KIESEL_NEWTONIAN_H
+#define KIESEL_NEWTONIAN_H
+
+#include "bc.h"
+#include "dict.h"
+#include "field.h"
+#include "fvm.h"
+#include "interp.h"
+#include "linsolve.h"
+#include "props.h"
+
+typedef struct Granular {
+    const FvMesh *f;
+    const Interp *ip;
+    GranularProps pr;
+    Field *rho, *U;        /* the state (the caller's fields, updated in place) */
+    Bc bc_rho, bc_U;
+    FvMatrix M;
+    Fvm op;
+    int naxes, axis[3];    /* the velocity components solved (2 in 2-D) */
+    LinSettings set[3];
+    LinSystem *L[3];
+    LinStats st[3];        /* of the last step */
+    char *wall;            /* nboundary: 1 on an impermeable face */
+    double *phi, *cf;      /* nfaces: flux, sound speed */
+    double *pf;            /* nfaces: face pressure */
+    double *rho1, *U1;     /* the new state */
+    double *rhoU, *conv, *force;   /* 3 ncells */
+    double *crho, *x, *uk; /* ncells */
+    double *xb, *xb3, *xbr;        /* boundary values */
+} Granular;
+
+/* Keywords of divSchemes, for -help. */
+extern const DictKey gran_div_keys[];
+
+/* Checks fvSchemes' divSchemes: every entry "Gauss upwind" (default may
+   also be none); another word fails with file:line. */
+int gran_read_div(const Dict *fvschemes, Err *e);
+
+/* Sets up the model on f with the interpolation ip: the boundary
+   conditions of rho and U, the matrix, the solvers of Ux, Uy (, Uz) from
+   fvSolution. */
+int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, Field *rho, Field *U,
+              const Dict *fvsolution, Err *e);
+void gran_free(Granular *g);
+
+/* The face fluxes phi of the current velocity. */
+void gran_flux(Granular *g);
+/* Courant number of the fluxes for step dt with the sound speed
+   sqrt(RsT) (pressure is explicit): the largest, and the mean into *mean. */
+double gran_courant(Granular *g, double dt, double *mean);
+/* One step of eq. 4.66 over dt from the fluxes of gran_flux. */
+int gran_step(Granular *g, double dt, Err *e);
+/* Total mass sum rho V. */
+double gran_mass(const Granular *g);
+/* The derived pressure p = RsT rho (cells and, as calculated values, the
+   boundary faces) into p, a field made with field_init. */
+void gran_pressure(Granular *g, Field *p);
+
+#endif
