@@ -134,6 +134,7 @@ typedef struct Ctx {
     int64_t sc[3]; /* cell strides */
     char *cls;     /* per vertex: 1 fluid, 0 solid (2: snapping) */
     char *onsurf;  /* per vertex: 1 when on the surface (within snap) */
+    float *level;  /* per vertex: |geometry_level|, or -1 not yet known (diagonal_touch) */
     unsigned char *lmask; /* per Cartesian cell: its fluid corners (bit q), local_masks */
     int *vpt;      /* per vertex: mesh point or -1 */
     int *cellid;   /* per Cartesian cell: new cell or -1 */
@@ -511,10 +512,22 @@ static int64_t cell_corner(const Ctx *c, int64_t v0, int q)
 static int diagonal_touch(const Ctx *c, int i, int j, int k, const int64_t cv[8], int q, int to)
 {
     const int ijk[3] = {i + (q & 1), j + ((q >> 1) & 1), k + (q >> 2)};
+    /* no probe can reach the surface from a vertex farther from it than
+       the longest probe, snap x the cell's diagonal; |level| is at most
+       the distance (geometry.h), so it rules such vertices out with one
+       query per vertex instead of one per probe */
+    float *lv = &c->level[cv[q]];
+    double diag2 = 0, x[3];
+    for (int a = 0; a < 3; a++) {
+        double h = c->x[a][(a == 0 ? i : a == 1 ? j : k) + 1] - c->x[a][a == 0 ? i : a == 1 ? j : k];
+        diag2 += h * h;
+        x[a] = c->x[a][ijk[a]];
+    }
+    if (*lv < 0) *lv = (float)fabs(geometry_level(c->g, x));
+    if (*lv > 2 * c->snap * sqrt(diag2)) return 0;
     for (int r = 0; r < 8; r++) {
         if (c->cls[cv[r]] != to) continue;
         const int rk[3] = {i + (r & 1), j + ((r >> 1) & 1), k + (r >> 2)};
-        double x[3];
         for (int a = 0; a < 3; a++) x[a] = c->x[a][ijk[a]] + c->snap * (c->x[a][rk[a]] - c->x[a][ijk[a]]);
         if (geometry_fluid(c->g, x) == to) return 1;
     }
@@ -1617,6 +1630,8 @@ static int setup(Ctx *c, const Mesh *grid, Err *e)
     int64_t nv = c->sv[2] * c->nv[2];
     c->cls = mem_alloc((size_t)nv);
     c->onsurf = mem_calloc((size_t)nv, 1);
+    c->level = mem_alloc(sizeof(float) * (size_t)nv);
+    for (int64_t v = 0; v < nv; v++) c->level[v] = -1;
     c->lmask = mem_alloc((size_t)grid->ncells);
     c->vpt = mem_alloc(sizeof(int) * (size_t)nv);
     memset(c->vpt, 0xff, sizeof(int) * (size_t)nv);
@@ -1641,6 +1656,7 @@ static void ctx_free(Ctx *c)
 {
     free(c->cls);
     free(c->onsurf);
+    free(c->level);
     free(c->lmask);
     free(c->vpt);
     free(c->cellid);
