@@ -40,6 +40,18 @@
 
 #include "mem.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+/* Under AddressSanitizer (make SANITIZE=1): every program that solves
+   through PETSc starts OpenMPI, whose start-up allocations outlive
+   MPI_Finalize; LeakSanitizer's suppressions of them
+   (etc/sanitize/lsan.c) only match full stacks, and the fast unwinder
+   stops at the first frame of a library built without frame pointers.
+   Defined here, next to the MPI start, so that exactly the programs
+   that link this file pay for the slower unwinding. */
+const char *__asan_default_options(void);
+const char *__asan_default_options(void) { return "fast_unwind_on_malloc=0"; }
+#endif
+
 #if defined(PETSC_USE_64BIT_INDICES) || defined(PETSC_USE_COMPLEX) || !defined(PETSC_USE_REAL_DOUBLE)
 #error "Kiesel needs PETSc with 32-bit indices and real double scalars (Debian's petsc-dev)"
 #endif

@@ -36,9 +36,6 @@
 
 #include <math.h>
 
-/* See test_linsolve.c: full malloc stacks under AddressSanitizer. */
-const char *__asan_default_options(void);
-const char *__asan_default_options(void) { return "fast_unwind_on_malloc=0"; }
 
 static const double MU = 0.7, PI = 3.14159265358979323846;
 static const char *const DISC =

@@ -27,13 +27,6 @@
 #include <petscconf.h>
 #include <time.h>
 
-/* Under AddressSanitizer (make SANITIZE=1): full stacks at malloc, so
-   that the suppressions of OpenMPI's start-up allocations
-   (etc/sanitize/lsan.c) match; the fast unwinder stops at the first
-   frame of a library built without frame pointers.  Unused otherwise. */
-const char *__asan_default_options(void);
-const char *__asan_default_options(void) { return "fast_unwind_on_malloc=0"; }
-
 static const char fvsolution[] =
     "solvers\n"                                                                                      /* 1 */
     "{\n"                                                                                            /* 2 */
