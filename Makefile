@@ -150,9 +150,11 @@ check: all
 tutorial: deps
 	@$(MAKE) --no-print-directory all
 	@tutorials/basic/quickStart/Allrun
+	@tutorials/granular/cylinderFlow/Allrun
 
 bench: all
 	@KIESEL_BIN=$(abspath $(BIN)) bench/run
+	@KIESEL_BIN=$(abspath $(BIN)) bench/bench_solver
 
 validate: all
 	@KIESEL_BIN=$(abspath $(BIN)) tests/run --validate

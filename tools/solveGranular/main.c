@@ -35,8 +35,12 @@ static const ArgDict dicts[] = {
     {"system/fvSolution: solvers.Ux, Uy, Uz", linsolve_keys, NULL},
     {0}};
 
+static const ArgOpt opts[] = {
+    {"-profile", NULL, "at the end, print where the steps' time went (flux, explicit terms, assembly, linear solves)"},
+    {0}};
+
 static const ToolInfo tool = {"solveGranular", "continuum granular flow (ICCM, eq. 4.66): model Newtonian (eq. 5.1)",
-                              NULL, dicts, 0};
+                              opts, dicts, 0};
 
 static volatile sig_atomic_t stop_signal;
 
@@ -97,10 +101,32 @@ static void log_step(const Args *a, Run *r, double mass0)
     }
     double mass = gran_mass(&r->g);
     printf("Total mass = %.15g, change since start = %.3e (relative)\n", mass, (mass - mass0) / mass0);
+    const char *sep = "Mass flow out:";
+    for (int q = 0; q < r->m.npatches; q++)
+        if (gran_open_patch(&r->g, q)) {
+            printf("%s %s %.9g", sep, r->m.patches[q].name, r->g.patch_out[q]);
+            sep = ",";
+        }
+    if (strcmp(sep, "Mass flow out:")) printf("; mass out since start = %.15g\n", r->g.out_total);
     log_exec(a);
     const Control *c = r->tl.c;
     double done = r->tl.value - r->tl.start, wall = args_wall(a);
     if (done > 0) printf("Estimated time to finish = %.3g s\n", wall / done * fmax(0, c->endTime - r->tl.value));
+    printf("\n");
+}
+
+/* -profile: the time of the steps by part, and the cell-steps per second. */
+static void print_profile(const Run *r, long steps)
+{
+    const Granular *g = &r->g;
+    const char *name[5] = {"face fluxes and Courant number", "explicit terms (rho, convection, pressure)",
+                           "assembly of the implicit systems", "linear solves", "checks and copies"};
+    double t[5] = {g->t_flux, g->t_explicit, g->t_assembly, g->t_solve, g->t_update}, sum = 0;
+    for (int i = 0; i < 5; i++) sum += t[i];
+    printf("Step profile: %ld steps, %d cells, %.6g s in the steps\n", steps, r->g.f->nowned, sum);
+    for (int i = 0; i < 5; i++)
+        printf("  %-44s %10.4f s  %5.1f %%\n", name[i], t[i], sum > 0 ? 100 * t[i] / sum : 0);
+    if (sum > 0) printf("  cell-steps per second %.4g\n", (double)steps * r->g.f->nowned / sum);
     printf("\n");
 }
 
@@ -130,8 +156,9 @@ static void read_case(Run *r, const Args *a, Interp *ip, FvMesh *fm, Start *st)
     dict_free(sol);
 }
 
-static void run(const Args *a, Run *r, const Start *st)
+static long run(const Args *a, Run *r, const Start *st)
 {
+    long steps = 0;
     Err e;
     double mass0 = gran_mass(&r->g);
     timeloop_init(&r->tl, &r->cs.control, st->value, st->index, st->dt);
@@ -158,6 +185,7 @@ static void run(const Args *a, Run *r, const Start *st)
             runtime_time_name(&r->cs.control, t0, name);
             err_fatal("stopped; the last good state is in time %s", name);
         }
+        steps++;
         log_step(a, r, mass0);
         if (r->tl.write_now) write_time(r, r->tl.value);
     }
@@ -165,6 +193,7 @@ static void run(const Args *a, Run *r, const Start *st)
         if (r->written != r->tl.value) write_time(r, r->tl.value);
         printf("Stopped by signal %d at Time = %.15g; the state is written\n", (int)stop_signal, r->tl.value);
     }
+    return steps;
 }
 
 int main(int argc, char **argv)
@@ -180,7 +209,8 @@ int main(int argc, char **argv)
     memset(&r, 0, sizeof r);
     read_case(&r, &a, &ip, &fm, &st);
     catch_signals();
-    run(&a, &r, &st);
+    long steps = run(&a, &r, &st);
+    if (args_get(&a, &tool, "-profile")) print_profile(&r, steps);
     log_end(&a);
     gran_free(&r.g);
     interp_free(&ip);

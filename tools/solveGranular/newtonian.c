@@ -14,6 +14,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "fvc.h"
 #include "mem.h"
@@ -79,6 +80,7 @@ static void alloc_work(Granular *g)
     g->xb = mem_alloc(3 * nb * sizeof(double));
     g->xb3 = mem_alloc(3 * nb * sizeof(double));
     g->xbr = mem_alloc(nb * sizeof(double));
+    g->patch_out = mem_calloc((size_t)g->bc_rho.npatches + 1, sizeof(double));
     double c = sqrt(g->pr.RsT);
     for (size_t i = 0; i < nf; i++) g->cf[i] = c;
 }
@@ -129,9 +131,46 @@ void gran_free(Granular *g)
     if (g->bc_U.fm) bc_free(&g->bc_U);
     if (g->bc_rho.fm) bc_free(&g->bc_rho);
     void *arr[] = {g->wall, g->phi, g->cf,  g->pf, g->rho1, g->U1, g->rhoU, g->conv,
-                   g->force, g->crho, g->x, g->uk, g->xb,   g->xb3, g->xbr};
+                   g->force, g->crho, g->x, g->uk, g->xb,   g->xb3, g->xbr, g->patch_out};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
     memset(g, 0, sizeof *g);
+}
+
+/* Monotonic clock in seconds, for the step profile. */
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int gran_open_patch(const Granular *g, int q)
+{
+    BcKind k = g->bc_U.patch[q].kind;
+    return k != BC_NO_SLIP && k != BC_MOVING_WALL && k != BC_SLIP && k != BC_SYMMETRY_PLANE && k != BC_EMPTY &&
+           k != BC_CYCLIC;
+}
+
+/* The mass flow out of each open patch, the boundary part of the upwind
+   divergence of rho (the same products fvc_div_upwind sums), and its
+   running integral. */
+static void mass_flow(Granular *g, const double *rho, double dt)
+{
+    const FvMesh *f = g->f;
+    double net = 0;
+    for (int q = 0; q < g->bc_rho.npatches; q++) {
+        const BcPatch *bp = &g->bc_rho.patch[q];
+        double s = 0;
+        if (gran_open_patch(g, q))
+            for (int i = bp->start; i < bp->start + bp->size; i++) {
+                if (f->empty_face[i]) continue;
+                double up = g->phi[i] >= 0 ? rho[f->m->owner[i]] : g->xbr[i - f->ninternal];
+                s += up * g->phi[i];
+            }
+        g->patch_out[q] = s;
+        net += s;
+    }
+    g->out_total += dt * net;
 }
 
 /* Component k of the vector field v (ncells * 3) into out. */
@@ -142,6 +181,7 @@ static void component(const FvMesh *f, const double *v, int k, double *out)
 
 void gran_flux(Granular *g)
 {
+    double t0 = now();
     const FvMesh *f = g->f;
     const Stencil *s = &g->ip->face;
     bc_update(&g->bc_U, g->U->v);
@@ -155,6 +195,7 @@ void gran_flux(Granular *g)
             g->phi[i] += uf * f->m->face_area[3 * i + k];
         }
     }
+    g->t_flux += now() - t0;
 }
 
 double gran_courant(Granular *g, double dt, double *mean)
@@ -194,6 +235,7 @@ static void explicit_terms(Granular *g, double dt)
     bc_update(&g->bc_rho, rho);
     bc_states(&g->bc_rho, rho, g->xbr);
     fvc_div_upwind(f, g->phi, rho, g->xbr, 1, g->conv); /* eq. 4.60 */
+    mass_flow(g, rho, dt);
     for (int c = 0; c < f->ncells; c++) g->rho1[c] = rho[c] - dt / f->m->cell_vol[c] * g->conv[c];
     bc_states(&g->bc_U, U, g->xb);
     for (int b = 0; b < f->nboundary; b++)
@@ -211,6 +253,7 @@ static int solve_component(Granular *g, int j, double dt, Err *e)
     const FvMesh *f = g->f;
     int k = g->axis[j];
     FvMatrix *M = &g->M;
+    double t0 = now();
     fvmatrix_zero(M);
     fvm_ddt(M, f, g->rho1, dt);
     fvm_laplacian(&g->op, M, k, g->pr.mu); /* eq. 4.62-4.64 */
@@ -220,7 +263,11 @@ static int solve_component(Granular *g, int j, double dt, Err *e)
                      g->rho->v[c] * g->pr.g[k] * V;
     }
     component(f, g->U->v, k, g->x);
-    if (linsolve_solve(g->L[j], g->x, &g->st[j], e)) return -1;
+    double t1 = now();
+    g->t_assembly += t1 - t0;
+    int rc = linsolve_solve(g->L[j], g->x, &g->st[j], e);
+    g->t_solve += now() - t1;
+    if (rc) return -1;
     for (int c = 0; c < f->ncells; c++) g->U1[3 * c + k] = g->x[c];
     return 0;
 }
@@ -239,12 +286,19 @@ static int bad_cell(const Granular *g)
 int gran_step(Granular *g, double dt, Err *e)
 {
     const FvMesh *f = g->f;
+    double out0 = g->out_total, t0 = now();
     explicit_terms(g, dt);
+    g->t_explicit += now() - t0;
     memcpy(g->U1, g->U->v, sizeof(double) * 3 * (size_t)f->ncells);
     for (int j = 0; j < g->naxes; j++)
-        if (solve_component(g, j, dt, e)) return -1;
+        if (solve_component(g, j, dt, e)) {
+            g->out_total = out0;
+            return -1;
+        }
+    t0 = now();
     int c = bad_cell(g);
     if (c >= 0) {
+        g->out_total = out0;
         const double *x = f->node + 3 * c, *u = g->U1 + 3 * c;
         return err_set(e, NULL, 0,
                        "cell %d at (%g %g %g): %s: density %g, velocity (%g %g %g) (time step %g too large for "
@@ -254,6 +308,7 @@ int gran_step(Granular *g, double dt, Err *e)
     }
     memcpy(g->rho->v, g->rho1, sizeof(double) * (size_t)f->ncells);
     memcpy(g->U->v, g->U1, sizeof(double) * 3 * (size_t)f->ncells);
+    g->t_update += now() - t0;
     return 0;
 }
 

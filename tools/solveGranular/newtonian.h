@@ -55,6 +55,13 @@ typedef struct Granular {
     double *rhoU, *conv, *force;   /* 3 ncells */
     double *crho, *x, *uk; /* ncells */
     double *xb, *xb3, *xbr;        /* boundary values */
+    double *patch_out;     /* npatches: mass flow out of each patch in the
+                              last step, sum_f B(rho, phi) (eq. 4.60) */
+    double out_total;      /* sum over the steps of dt x the net mass flow
+                              out: mass(start) - mass = out_total to
+                              round-off (the internal fluxes cancel) */
+    double t_flux, t_explicit, t_assembly, t_solve, t_update;   /* seconds
+                              spent in each part of the steps (GranProfile) */
 } Granular;
 
 /* Keywords of divSchemes, for -help. */
@@ -78,6 +85,8 @@ void gran_flux(Granular *g);
 double gran_courant(Granular *g, double dt, double *mean);
 /* One step of eq. 4.66 over dt from the fluxes of gran_flux. */
 int gran_step(Granular *g, double dt, Err *e);
+/* Does patch q carry mass (not a wall, not empty, not cyclic)? */
+int gran_open_patch(const Granular *g, int q);
 /* Total mass sum rho V. */
 double gran_mass(const Granular *g);
 /* The derived pressure p = RsT rho (cells and, as calculated values, the
