@@ -26,6 +26,8 @@ typedef struct InterpIndex {
     double hmax[3];     /* largest h_s per axis (search window) */
     int active[3];      /* axes interpolated along (not the empty one) */
     int block;          /* multilinear on a block grid without cartesianCells */
+    int per[3];         /* multilinear: a cyclic pair spans the box along axis k */
+    int pshift[3][3];   /* its lattice shift from the min side's image to the max side */
     int *cand;          /* scratch of a query */
     double *cw;
     size_t ccap;

@@ -41,6 +41,18 @@
 **     xi_S = xi_S' + sum_a (ghost_a - xi_S'): exact for linear functions
 **     at the walls of a block grid, corners and edges included; when S'
 **     is missing, as an outside centre.
+** A cyclic pair of patches on the two sides of the box along an axis k
+** (the periodic inclined channel of thesis §5.1.3, whose translation is
+** (L, rise, 0), not (L, 0, 0)) makes the lattice periodic: a centre beyond
+** such a side is its image one translation away, found by a shift of
+** lattice indices (n_k along k, the rise in cells along the others), when
+** the translation maps grid lines onto grid lines.  A present image stands
+** for its cell; a slave image is reflected in the image's own frame (its
+** master, its wall); an outside image as an outside centre from the
+** present corners of the box.  The stencil then sees the same cells at
+** both ends of the period, as the solver's cyclic faces do; without it a
+** cut channel's ends were mirrored at the box sides and the density error
+** next to them was 0.24 at h = 0.1 instead of the interior's.
 ** A reflection whose line is nearly parallel to the plane, or whose master
 ** centre lies on it (|t_b| < TB_MIN: weights 1/t_b would blow up), or that
 ** finds no faces, takes xi_S = xi_M instead (InterpStats.ndegenerate).
@@ -61,7 +73,9 @@
 
 typedef struct Corner {
     int idx[3];    /* lattice indices (may be -1 or n: beyond the box) */
-    int K;         /* Cartesian cell, or -1 beyond the box */
+    int K;         /* Cartesian cell, or -1 beyond the box (its image's when img) */
+    int img;       /* beyond a cyclic side: K, cell and iidx are its periodic image's */
+    int iidx[3];   /* the image's lattice indices */
     int cell;      /* its cell when present, else -1 */
     double w;      /* multilinear weight */
 } Corner;
@@ -81,6 +95,68 @@ static int role_of(const Interp *ip, int K, int *cell)
 
 static int present(int role) { return role == CART_WHOLE || role == CART_CUT || role == CART_MASTER; }
 
+/* The coordinate of x[0..n] equal to v to tol, or -1. */
+static int grid_line(const double *x, int n, double v, double tol)
+{
+    int i = interp_locate(x, n, v);
+    if (fabs(x[i] - v) <= tol) return i;
+    if (i + 1 <= n && fabs(x[i + 1] - v) <= tol) return i + 1;
+    return -1;
+}
+
+/* Does every face of patch p lie on the plane x_k = v? */
+static int on_plane(const Mesh *m, const Patch *pa, int k, double v, double tol)
+{
+    for (int i = 0; i < pa->size; i++)
+        if (fabs(m->face_centre[3 * (pa->start + i) + k] - v) > tol) return 0;
+    return pa->size > 0;
+}
+
+/* The lattice shift s along axis a of translation T_a: x[a][i + s] =
+   x[a][i] + T_a for every i where both exist; 0 with *ok = 0 when none. */
+static int lattice_shift(const CartGrid *g, int a, double Ta, double tol, int *ok)
+{
+    int n = g->n[a];
+    if (fabs(Ta) <= tol) return 0;
+    int j = Ta > 0 ? grid_line(g->x[a], n, g->x[a][0] + Ta, tol) : grid_line(g->x[a], n, g->x[a][n] + Ta, tol);
+    if (j < 0) {
+        *ok = 0;
+        return 0;
+    }
+    int sh = Ta > 0 ? j : j - n;
+    for (int i = 0; i <= n; i++)
+        if (i + sh >= 0 && i + sh <= n && fabs(g->x[a][i + sh] - g->x[a][i] - Ta) > tol) *ok = 0;
+    return sh;
+}
+
+/* Cyclic pairs spanning the box: per[k] and the lattice shift pshift[k]
+   of each, from the first pair of faces (bc.c checks the rest). */
+static void periodic_lattice(InterpIndex *ix, const Mesh *m)
+{
+    const CartGrid *g = &m->cart;
+    double size = 0;
+    for (int k = 0; k < 3; k++) size = fmax(size, g->x[k][g->n[k]] - g->x[k][0]);
+    double tol = 1e-9 * size;
+    memset(ix->per, 0, sizeof ix->per);
+    for (int p = 0; p < m->npatches; p++) {
+        const Patch *pa = &m->patches[p];
+        if (!pa->type || strcmp(pa->type, "cyclic") || !pa->neighbour) continue;
+        int q = mesh_patch(m, pa->neighbour);
+        if (q < 0 || m->patches[q].size != pa->size) continue;
+        const Patch *qa = &m->patches[q];
+        for (int k = 0; k < 3; k++) {
+            if (!ix->active[k] || !on_plane(m, pa, k, g->x[k][0], tol) || !on_plane(m, qa, k, g->x[k][g->n[k]], tol))
+                continue;
+            int ok = 1;
+            for (int a = 0; a < 3; a++) {
+                double Ta = m->face_centre[3 * qa->start + a] - m->face_centre[3 * pa->start + a];
+                ix->pshift[k][a] = ix->active[a] ? lattice_shift(g, a, Ta, tol, &ok) : 0;
+            }
+            ix->per[k] = ok && ix->pshift[k][k] == g->n[k];
+        }
+    }
+}
+
 int interp_ml_check(const Interp *ip, const char *grid, Err *e)
 {
     const Mesh *m = ip->f->m;
@@ -90,6 +166,7 @@ int interp_ml_check(const Interp *ip, const char *grid, Err *e)
                        "interpolation scheme multilinear needs the Cartesian parent grid (cartesianGrid) of %s, "
                        "which has none: choose shepard",
                        g);
+    periodic_lattice(ip->ix, m);
     if (m->cartcells.n > 0) return 0;
     long ncart = (long)m->cart.n[0] * m->cart.n[1] * m->cart.n[2];
     int block = ncart == m->ncells && !m->cell_seed;
@@ -220,7 +297,7 @@ static void ghost_outside(Interp *ip, const Corner *cs, int nc, const Corner *S,
         int best = -1;
         double bkey = INFINITY;
         for (int q = 0; q < nc; q++) {
-            if (cs[q].cell < 0 || tried[q]) continue;
+            if (cs[q].cell < 0 || cs[q].img || tried[q]) continue;
             double x[3];
             lattice_point(g, cs[q].idx, x);
             double dd = (x[0] - xS[0]) * (x[0] - xS[0]) + (x[1] - xS[1]) * (x[1] - xS[1]) + (x[2] - xS[2]) * (x[2] - xS[2]);
@@ -275,6 +352,27 @@ static void ghost_box(Interp *ip, const Corner *cs, int nc, const Corner *S, con
     stencil_add(s, cell, -(m - 1) * w);
 }
 
+/* Corner c beyond the box: its periodic image, when cyclic sides span the
+   box along the axes it lies beyond and the image lies inside the box. */
+static void periodic_image(const Interp *ip, Corner *c)
+{
+    const InterpIndex *ix = ip->ix;
+    const CartGrid *g = &ip->f->m->cart;
+    int j[3];
+    memcpy(j, c->idx, sizeof j);
+    for (int k = 0; k < 3; k++) {
+        if (j[k] >= 0 && j[k] < g->n[k]) continue;
+        if (!ix->per[k]) return;
+        int sg = j[k] < 0 ? 1 : -1;
+        for (int a = 0; a < 3; a++) j[a] += sg * ix->pshift[k][a];
+    }
+    for (int k = 0; k < 3; k++)
+        if (j[k] < 0 || j[k] >= g->n[k]) return;
+    c->img = 1;
+    memcpy(c->iidx, j, sizeof j);
+    c->K = j[0] + g->n[0] * (j[1] + g->n[1] * j[2]);
+}
+
 /* The 2^d corners of the lattice box around x; returns their number. */
 static int corners(const Interp *ip, const double x[3], Corner *cs)
 {
@@ -306,6 +404,9 @@ static int corners(const Interp *ip, const double x[3], Corner *cs)
         int in = 1;
         for (int k = 0; k < 3; k++) in &= c->idx[k] >= 0 && c->idx[k] < g->n[k];
         c->K = in ? c->idx[0] + g->n[0] * (c->idx[1] + g->n[1] * c->idx[2]) : -1;
+        c->img = 0;
+        if (!in) periodic_image(ip, c);
+        in = c->K >= 0;
         c->cell = -1;
         if (in && !present(role_of(ip, c->K, &c->cell))) c->cell = -1;
     }
@@ -332,7 +433,14 @@ void interp_multilinear(Interp *ip, const double x[3], Stencil *s)
         double xS[3];
         lattice_point(&m->cart, cs[q].idx, xS);
         ip->st.nreflect++;
-        if (cs[q].K < 0)
+        if (cs[q].img && !ip->ix->block && m->cartcells.role[cs[q].K] == CART_SLAVE) {
+            Corner I = cs[q];
+            memcpy(I.idx, I.iidx, sizeof I.idx);
+            lattice_point(&m->cart, I.idx, xS); /* the image's frame: its master, its wall */
+            ghost_slave(ip, &I, xS, cs[q].w, s);
+        } else if (cs[q].img)
+            ghost_outside(ip, cs, nc, cs + q, xS, cs[q].w, s);
+        else if (cs[q].K < 0)
             ghost_box(ip, cs, nc, cs + q, xS, cs[q].w, s);
         else if (!ip->ix->block && m->cartcells.role[cs[q].K] == CART_SLAVE)
             ghost_slave(ip, cs + q, xS, cs[q].w, s);
