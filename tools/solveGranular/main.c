@@ -138,7 +138,8 @@ static void read_case(Run *r, const Args *a, Interp *ip, FvMesh *fm, Start *st)
     if (props_read(&pr, r->cs.dir, &e)) err_die(&e);
     Dict *schemes = read_system(&r->cs, "system/fvSchemes"), *sol = read_system(&r->cs, "system/fvSolution");
     InterpOpts io;
-    if (gran_read_div(schemes, &e) || interp_read_opts(schemes, &io, &e) || state_start(&r->cs, st, &e))
+    TvdScheme div[2];
+    if (gran_read_div(schemes, div, &e) || interp_read_opts(schemes, &io, &e) || state_start(&r->cs, st, &e))
         err_die(&e);
     char *mpath = case_path(&r->cs, "constant/polyMesh");
     if (mesh_read(&r->m, mpath, &e) || fvmesh_init(fm, &r->m, &e) || interp_init(ip, fm, &io, mpath, &e)) err_die(&e);
@@ -147,7 +148,7 @@ static void read_case(Run *r, const Args *a, Interp *ip, FvMesh *fm, Start *st)
         err_die(&e);
     print_warnings(&r->rho);
     print_warnings(&r->U);
-    if (gran_init(&r->g, fm, ip, &pr, &r->rho, &r->U, sol, &e)) err_die(&e);
+    if (gran_init(&r->g, fm, ip, &pr, div, &r->rho, &r->U, sol, &e)) err_die(&e);
     double zero = 0;
     field_init(&r->p, &r->m, "p", 1, &zero, "calculated");
     r->p.dims[0] = 1, r->p.dims[1] = -1, r->p.dims[2] = -2;

@@ -20,32 +20,30 @@
 #include "mem.h"
 
 const DictKey gran_div_keys[] = {
-    {"default", "Gauss upwind", "convection of rho and rho u: Gauss upwind (eq. 4.60; none when both below are given)"},
-    {"div(phi,rho)", "Gauss upwind", "convection in the continuity equation"},
-    {"div(phi,U)", "Gauss upwind", "convection of momentum"},
+    {"default", "Gauss upwind",
+     "convection of rho and rho u: Gauss upwind (eq. 4.60) | Gauss limitedLinear k (0 <= k <= 1) | Gauss vanLeer "
+     "(bounded second order, doc/theory.md) | none (then both below are required)"},
+    {"div(phi,rho)", "default", "convection in the continuity equation"},
+    {"div(phi,U)", "default", "convection of momentum rho u"},
     {NULL, NULL, NULL}};
 
-/* Is entry en's value the two words "Gauss upwind" (or "none" when
-   none_ok)? */
-static int upwind_entry(const DictEntry *en, int none_ok)
+int gran_read_div(const Dict *fvschemes, TvdScheme div[2], Err *e)
 {
-    if (en->nvals == 1 && none_ok) return en->vals[0]->kind == DN_WORD && !strcmp(en->vals[0]->text, "none");
-    return en->nvals == 2 && en->vals[0]->kind == DN_WORD && en->vals[1]->kind == DN_WORD &&
-           !strcmp(en->vals[0]->text, "Gauss") && !strcmp(en->vals[1]->text, "upwind");
-}
-
-int gran_read_div(const Dict *fvschemes, Err *e)
-{
+    static const char *const keys[2] = {"div(phi,rho)", "div(phi,U)"};
+    TvdScheme def = {TVD_UPWIND, 1};
+    div[0] = div[1] = def;
     const Dict *d = dict_subdict_opt(fvschemes, "divSchemes");
     if (!d) return 0;
     if (dict_check_keys(d, gran_div_keys, e)) return -1;
-    for (size_t i = 0; i < d->n; i++) {
-        const DictEntry *en = &d->entries[i];
-        if (en->dict || !upwind_entry(en, !strcmp(en->key, "default")))
-            return err_set(e, en->file, en->line,
-                           "divSchemes: %s: only 'Gauss upwind' is implemented (eq. 4.60; the limited linear "
-                           "scheme is not yet)",
-                           en->key);
+    const DictEntry *en = dict_find(d, "default");
+    int none = en && !en->dict && en->nvals == 1 && en->vals[0]->kind == DN_WORD && !strcmp(en->vals[0]->text, "none");
+    if (en && !none && tvd_parse(en, &def, e)) return -1;
+    for (int j = 0; j < 2; j++) {
+        en = dict_find(d, keys[j]);
+        div[j] = def;
+        if (en && tvd_parse(en, &div[j], e)) return -1;
+        if (!en && none)
+            return err_set(e, d->file, d->line, "divSchemes: %s missing (default is none)", keys[j]);
     }
     return 0;
 }
@@ -104,11 +102,14 @@ static int init_solvers(Granular *g, const Dict *fvsolution, Err *e)
     return 0;
 }
 
-int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, Field *rho, Field *U,
-              const Dict *fvsolution, Err *e)
+int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, const TvdScheme div[2],
+              Field *rho, Field *U, const Dict *fvsolution, Err *e)
 {
     memset(g, 0, sizeof *g);
     g->f = f;
+    g->div_rho = div[0];
+    g->div_U = div[1];
+    tvd_init(&g->tvd, f, div[0].kind == TVD_UPWIND && div[1].kind == TVD_UPWIND ? 0 : 3);
     g->ip = ip;
     g->pr = *pr;
     g->rho = rho;
@@ -130,6 +131,7 @@ void gran_free(Granular *g)
     if (g->M.off) fvmatrix_free(&g->M);
     if (g->bc_U.fm) bc_free(&g->bc_U);
     if (g->bc_rho.fm) bc_free(&g->bc_rho);
+    tvd_free(&g->tvd);
     void *arr[] = {g->wall, g->phi, g->cf,  g->pf, g->rho1, g->U1, g->rhoU, g->conv,
                    g->force, g->crho, g->x, g->uk, g->xb,   g->xb3, g->xbr, g->patch_out};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
@@ -234,7 +236,7 @@ static void explicit_terms(Granular *g, double dt)
     const double *rho = g->rho->v, *U = g->U->v;
     bc_update(&g->bc_rho, rho);
     bc_states(&g->bc_rho, rho, g->xbr);
-    fvc_div_upwind(f, g->phi, rho, g->xbr, 1, g->conv); /* eq. 4.60 */
+    tvd_div(&g->tvd, &g->div_rho, g->phi, rho, g->xbr, 1, g->conv); /* eq. 4.60, or bounded second order */
     mass_flow(g, rho, dt);
     for (int c = 0; c < f->ncells; c++) g->rho1[c] = rho[c] - dt / f->m->cell_vol[c] * g->conv[c];
     bc_states(&g->bc_U, U, g->xb);
@@ -242,7 +244,7 @@ static void explicit_terms(Granular *g, double dt)
         for (int k = 0; k < 3; k++) g->xb3[3 * b + k] = g->xbr[b] * g->xb[3 * b + k];
     for (int c = 0; c < f->ncells; c++)
         for (int k = 0; k < 3; k++) g->rhoU[3 * c + k] = rho[c] * U[3 * c + k];
-    fvc_div_upwind(f, g->phi, g->rhoU, g->xb3, 3, g->conv);
+    tvd_div(&g->tvd, &g->div_U, g->phi, g->rhoU, g->xb3, 3, g->conv);
     face_pressure(g);
     fvc_pressure_force(f, g->pf, g->force);
 }

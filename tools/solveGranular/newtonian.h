@@ -5,7 +5,9 @@
 **     d_t(rho u) + div(rho u u^T) - div(mu grad u) + grad p = rho g,
 **     p = RsT rho,
 ** advanced by the semi-implicit Euler of eq. 4.66: explicit upwind
-** convection with the interpolated face velocity (eq. 4.60-4.61), explicit
+** convection with the interpolated face velocity (eq. 4.60-4.61; or,
+** beyond the thesis, the bounded second-order face values of fv/tvd.h
+** chosen in divSchemes), explicit
 ** pressure, implicit diffusion one velocity component at a time.
 **
 ** One step from (rho^m, u^m) over dt:
@@ -35,6 +37,7 @@
 #include "interp.h"
 #include "linsolve.h"
 #include "props.h"
+#include "tvd.h"
 
 typedef struct Granular {
     const FvMesh *f;
@@ -42,6 +45,8 @@ typedef struct Granular {
     GranularProps pr;
     Field *rho, *U;        /* the state (the caller's fields, updated in place) */
     Bc bc_rho, bc_U;
+    TvdScheme div_rho, div_U;   /* divSchemes' div(phi,rho) and div(phi,U) */
+    Tvd tvd;               /* their grid data (nothing when both are upwind) */
     FvMatrix M;
     Fvm op;
     int naxes, axis[3];    /* the velocity components solved (2 in 2-D) */
@@ -67,15 +72,18 @@ typedef struct Granular {
 /* Keywords of divSchemes, for -help. */
 extern const DictKey gran_div_keys[];
 
-/* Checks fvSchemes' divSchemes: every entry "Gauss upwind" (default may
-   also be none); another word fails with file:line. */
-int gran_read_div(const Dict *fvschemes, Err *e);
+/* fvSchemes' divSchemes into div[0] (div(phi,rho)) and div[1]
+   (div(phi,U)): each entry "Gauss upwind", "Gauss limitedLinear k" or
+   "Gauss vanLeer" (fv/tvd.h), a missing one takes default's (default
+   Gauss upwind; default none requires both).  Another scheme fails with
+   file:line. */
+int gran_read_div(const Dict *fvschemes, TvdScheme div[2], Err *e);
 
-/* Sets up the model on f with the interpolation ip: the boundary
-   conditions of rho and U, the matrix, the solvers of Ux, Uy (, Uz) from
-   fvSolution. */
-int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, Field *rho, Field *U,
-              const Dict *fvsolution, Err *e);
+/* Sets up the model on f with the interpolation ip and the convection
+   schemes div (gran_read_div): the boundary conditions of rho and U, the
+   matrix, the solvers of Ux, Uy (, Uz) from fvSolution. */
+int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, const TvdScheme div[2],
+              Field *rho, Field *U, const Dict *fvsolution, Err *e);
 void gran_free(Granular *g);
 
 /* The face fluxes phi of the current velocity. */
