@@ -263,8 +263,9 @@ static void fill_cyclic(Bc *bc, const BcPatch *bp, int i)
     int f = bp->start + i, b = f - fm->ninternal, g = m->patches[bp->partner].start + i;
     int nb = m->owner[g];
     const double *x = fm->node + 3 * nb, *cg = m->face_centre + 3 * g;
-    double r[3] = {x[0] - cg[0], x[1] - cg[1], x[2] - cg[2]};
-    double dc = fm->h[f], dn = fabs(geom_dot(r, fm->nf + 3 * g));
+    const double *xc = fm->node + 3 * m->owner[f], *cf = m->face_centre + 3 * f;
+    double r[3] = {x[0] - cg[0], x[1] - cg[1], x[2] - cg[2]}, rc[3] = {xc[0] - cf[0], xc[1] - cf[1], xc[2] - cf[2]};
+    double dc = fabs(geom_dot(rc, fm->nf + 3 * f)), dn = fabs(geom_dot(r, fm->nf + 3 * g));
     wall_normal(fm, b, bc->n + 3 * b);
     bc->nbr[b] = nb;
     bc->nbr_d[b] = dn;
@@ -296,7 +297,7 @@ void bc_update(Bc *bc, const double *v)
                 } else {
                     double xn = v[bc->nbr[b] * w + k];
                     bc->b[j] = bc->nbr_w[b] * xn;
-                    bc->gb[j] = xn / (fm->h[f] + bc->nbr_d[b]);
+                    bc->gb[j] = -bc->ga[j] * xn; /* (xi_N - xi_C) / (dC + dN) */
                 }
             }
         }

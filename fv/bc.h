@@ -46,9 +46,12 @@
 **                   own centre, one translation for the whole patch).  The
 **                   face value is linear along the normal between the two
 **                   nodes, a = dN/(dC + dN) with b = dC/(dC + dN) xi_N, the
-**                   gradient (xi_N - xi_C)/(dC + dN) (dC = h_f, dN the
-**                   partner owner's normal distance); nbr and nbr_w give
-**                   the implicit coupling, b and gb the explicit one.
+**                   gradient (xi_N - xi_C)/(dC + dN) (dC, dN the two
+**                   nodes' normal distances from their faces): the value
+**                   a boundary source of a stencil or an explicit term
+**                   reads.  The solvers' face rows do not use them: a
+**                   cyclic face is an internal face of the periodic
+**                   domain there (fvmesh.h, interp.h).
 **   empty           the front and back of a 2-D grid: no flux
 **                   (xi_b = xi_in, gradient 0; the assembly skips them)
 **   calculated      a value the solver derives (p = R_s T rho): taken as a

@@ -18,26 +18,13 @@
 
 #include "mem.h"
 
-/* Does face i take part in the two-row (stencil) form? */
-static int stencil_face(const FvMesh *f, const Bc *bc, int i)
-{
-    if (f->empty_face[i]) return 0;
-    if (i < f->ninternal) return 1;
-    int b = i - f->ninternal;
-    return bc->nbr[b] < 0;
-}
-
 static int face_nbr(const FvMesh *f, int i) { return i < f->ninternal ? f->m->neighbour[i] : -1; }
 
-void fvm_pattern(FvPattern *p, const FvMesh *f, const Interp *ip, const Bc *bc)
+void fvm_pattern(FvPattern *p, const FvMesh *f, const Interp *ip)
 {
     for (int i = 0; i < f->nfaces; i++) {
         if (f->empty_face[i]) continue;
         int o = f->m->owner[i], n = face_nbr(f, i);
-        if (!stencil_face(f, bc, i)) {
-            fvpattern_couple(p, o, bc->nbr[i - f->ninternal]);
-            continue;
-        }
         for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++) {
             fvpattern_couple_stencil(p, o, &ip->face, interp_row(i, k));
             if (n >= 0) fvpattern_couple_stencil(p, n, &ip->face, interp_row(i, k));
@@ -55,11 +42,12 @@ static int source_pos(const FvMatrix *M, const FvMesh *f, int row, int s)
 }
 
 /* The distance of face i's difference (fvm.h): the node distance on
-   Cartesian faces, h + ht elsewhere. */
+   Cartesian faces (cyclic ones across the period), h + ht elsewhere. */
 static double face_dist(const FvMesh *f, int i)
 {
-    if (i < f->ninternal && f->cartesian_face[i]) {
-        const double *xo = f->node + 3 * f->m->owner[i], *xn = f->node + 3 * f->m->neighbour[i], *n = f->nf + 3 * i;
+    double xn[3];
+    if (f->cartesian_face[i] && fvmesh_across(f, i, xn) >= 0) {
+        const double *xo = f->node + 3 * f->m->owner[i], *n = f->nf + 3 * i;
         return fabs((xn[0] - xo[0]) * n[0] + (xn[1] - xo[1]) * n[1] + (xn[2] - xo[2]) * n[2]);
     }
     return f->h[i] + f->ht[i];
@@ -93,19 +81,10 @@ int fvm_init(Fvm *d, const FvMatrix *M, const FvMesh *f, const Interp *ip, const
     d->dist = mem_alloc(sizeof(double) * ((size_t)f->nfaces + 1));
     d->pos_own = mem_alloc(sizeof(int) * nent);
     d->pos_nbr = mem_alloc(sizeof(int) * nent);
-    d->pos_cyc = mem_alloc(sizeof(int) * (2 * (size_t)f->nboundary + 1));
     int missing = 0;
     for (int i = 0; i < f->nfaces; i++) {
         d->dist[i] = face_dist(f, i);
-        if (f->empty_face[i]) continue;
-        if (stencil_face(f, bc, i)) {
-            missing += face_positions(d, M, i);
-            continue;
-        }
-        int b = i - f->ninternal, o = f->m->owner[i];
-        d->pos_cyc[2 * b] = fvmatrix_pos(M, o, bc->nbr[b]);
-        d->pos_cyc[2 * b + 1] = M->diag[o];
-        missing += d->pos_cyc[2 * b] < 0;
+        if (!f->empty_face[i]) missing += face_positions(d, M, i);
     }
     if (missing) {
         fvm_free(d);
@@ -120,7 +99,6 @@ void fvm_free(Fvm *d)
     free(d->dist);
     free(d->pos_own);
     free(d->pos_nbr);
-    free(d->pos_cyc);
     memset(d, 0, sizeof *d);
 }
 
@@ -144,19 +122,12 @@ static void add_row(FvMatrix *M, const Fvm *d, const int *pos, int row, int r, i
     }
 }
 
-/* A cyclic or Neumann boundary face (outside the two-row form). */
-static void boundary_face(const Fvm *d, FvMatrix *M, int i, int k, double gamma)
+/* A Neumann boundary face: F = G |S| (ga u(MINUS) + gb). */
+static void neumann_face(const Fvm *d, FvMatrix *M, int i, int k, double gamma)
 {
     const FvMesh *f = d->f;
     const Bc *bc = d->bc;
     int b = i - f->ninternal, o = f->m->owner[i];
-    if (bc->nbr[b] >= 0) { /* F = G |S| (u_N - u_C) / (dC + dN) */
-        double D = gamma * f->mag_sf[i] / (f->h[i] + bc->nbr_d[b]);
-        M->val[d->pos_cyc[2 * b]] -= D;
-        M->val[d->pos_cyc[2 * b + 1]] += D;
-        return;
-    }
-    /* Neumann: F = G |S| (ga u(MINUS) + gb) */
     size_t bk = (size_t)b * (size_t)bc->width + (size_t)k;
     double G = gamma * f->mag_sf[i];
     M->rhs[o] += G * bc->gb[bk];
@@ -169,8 +140,8 @@ void fvm_laplacian(const Fvm *d, FvMatrix *M, int k, double gamma)
     for (int i = 0; i < f->nfaces; i++) {
         if (f->empty_face[i]) continue;
         int o = f->m->owner[i], n = face_nbr(f, i);
-        if (i >= f->ninternal && (d->bc->fixed_grad[i - f->ninternal] || d->bc->nbr[i - f->ninternal] >= 0)) {
-            if (o < M->nrows) boundary_face(d, M, i, k, gamma);
+        if (i >= f->ninternal && d->bc->fixed_grad[i - f->ninternal]) {
+            if (o < M->nrows) neumann_face(d, M, i, k, gamma);
             continue;
         }
         double D = gamma * f->mag_sf[i] / d->dist[i];
@@ -216,10 +187,7 @@ void fvm_face_flux(const Fvm *d, const double *u, int k, double gamma, double *f
         if (f->empty_face[i]) continue;
         double G = gamma * f->mag_sf[i];
         int b = i - f->ninternal;
-        if (i >= f->ninternal && bc->nbr[b] >= 0) {
-            int o = f->m->owner[i];
-            flux[i] = G * (u[(size_t)bc->nbr[b] * wd + k] - u[(size_t)o * wd + k]) / (f->h[i] + bc->nbr_d[b]);
-        } else if (i >= f->ninternal && bc->fixed_grad[b]) {
+        if (i >= f->ninternal && bc->fixed_grad[b]) {
             size_t bk = (size_t)b * (size_t)wd + (size_t)k;
             flux[i] = G * (bc->gb[bk] + (bc->ga[bk] != 0 ? bc->ga[bk] * row_value(d, u, interp_row(i, INTERP_MINUS), k) : 0));
         } else {

@@ -19,12 +19,15 @@
 ** boundary value a u_in + b of bc.h: a goes on the column of the face's
 ** owner, b to the right-hand side.  A boundary face of a Neumann type
 ** (fixed_grad) contributes its flux Gamma |S_f| (ga u(MINUS) + gb) (gb the
-** given gradient, ga 0 for zeroGradient); a cyclic face couples its owner
-** C to the periodic neighbour N: F = Gamma |S_f| (u_N - u_C) / (dC + dN)
-** (bc.h: nbr, nbr_d); empty faces contribute nothing.
+** given gradient, ga 0 for zeroGradient); empty faces contribute nothing.
+** A cyclic face is an internal face of the periodic domain (fvmesh.h):
+** its PLUS row interpolates at the periodic image of x_f + n h_f, and the
+** partner face's rows are its own with PLUS and MINUS swapped
+** (interp.c), so each of the two faces adds the flux to its owner's row
+** alone and the two fluxes cancel.
 **
 ** The pattern (fvm_pattern) couples every cell with the sources of its
-** faces' PLUS and MINUS rows and with its cyclic neighbours; the positions
+** faces' PLUS and MINUS rows (across the period for cyclic faces); the positions
 ** of every source in both rows (fvm_init) are found once and kept, so an
 ** assembly per time step adds by position without a search.
 */
@@ -46,12 +49,11 @@ typedef struct Fvm {
                        its face's owner (a boundary source: of the source
                        face's owner), -1 when that row is not ours */
     int *pos_nbr;   /* ... in the row of its face's neighbour */
-    int *pos_cyc;   /* 2 nboundary: cyclic (owner, nbr) and (owner, owner) */
 } Fvm;
 
 /* Adds to p the couplings of the diffusion operator on f with the face
-   stencils of ip and the cyclic neighbours of bc. */
-void fvm_pattern(FvPattern *p, const FvMesh *f, const Interp *ip, const Bc *bc);
+   stencils of ip. */
+void fvm_pattern(FvPattern *p, const FvMesh *f, const Interp *ip);
 
 /* Finds the positions on M (built from a pattern fvm_pattern filled);
    fails when an entry is missing from the pattern. */

@@ -52,14 +52,51 @@ static double plane_distance(const FvMesh *f, int i, const double *x)
     return fabs((x[0] - C[0]) * n[0] + (x[1] - C[1]) * n[1] + (x[2] - C[2]) * n[2]);
 }
 
+void fvmesh_cyclic_shift(const FvMesh *f, int i, double T[3])
+{
+    const double *a = f->m->face_centre + 3 * i, *b = f->m->face_centre + 3 * f->cyc_face[i - f->ninternal];
+    for (int k = 0; k < 3; k++) T[k] = b[k] - a[k];
+}
+
+int fvmesh_across(const FvMesh *f, int i, double x[3])
+{
+    const Mesh *m = f->m;
+    if (i < f->ninternal) {
+        memcpy(x, f->node + 3 * m->neighbour[i], 3 * sizeof *x);
+        return m->neighbour[i];
+    }
+    int g = f->cyc_face[i - f->ninternal];
+    if (g < 0) return -1;
+    double T[3];
+    fvmesh_cyclic_shift(f, i, T);
+    const double *xn = f->node + 3 * m->owner[g];
+    for (int k = 0; k < 3; k++) x[k] = xn[k] - T[k];
+    return m->owner[g];
+}
+
+/* Faces of a cyclic patch pair in order with its neighbourPatch's (the
+   geometry is bc.c's to check); unpaired patches stay boundaries. */
+static void cyclic_pairs(FvMesh *f)
+{
+    const Mesh *m = f->m;
+    for (int b = 0; b < f->nboundary; b++) f->cyc_face[b] = -1;
+    for (int p = 0; p < m->npatches; p++) {
+        const Patch *pa = &m->patches[p];
+        if (!pa->type || strcmp(pa->type, "cyclic") || !pa->neighbour) continue;
+        int q = mesh_patch(m, pa->neighbour);
+        if (q < 0 || q == p || m->patches[q].size != pa->size) continue;
+        for (int i = 0; i < pa->size; i++) f->cyc_face[pa->start + i - f->ninternal] = m->patches[q].start + i;
+    }
+}
+
 /* eq. 4.62-4.63 */
 static int distances(FvMesh *f, Err *e)
 {
     const Mesh *m = f->m;
     for (int i = 0; i < f->nfaces; i++) {
-        double dc = plane_distance(f, i, f->node + 3 * m->owner[i]);
-        if (i < f->ninternal) {
-            double dn = plane_distance(f, i, f->node + 3 * m->neighbour[i]);
+        double dc = plane_distance(f, i, f->node + 3 * m->owner[i]), xn[3];
+        if (fvmesh_across(f, i, xn) >= 0) {
+            double dn = plane_distance(f, i, xn);
             f->h[i] = f->ht[i] = fmin(dc, dn);
         } else {
             f->h[i] = dc;
@@ -67,7 +104,7 @@ static int distances(FvMesh *f, Err *e)
         }
         if (!(f->h[i] > 0) && !f->empty_face[i])
             return err_set(e, NULL, 0, "face %d: the node of cell %d lies on its plane (h_f = 0, eq. 4.62)", i,
-                           f->h[i] == dc ? m->owner[i] : m->neighbour[i]);
+                           f->h[i] == dc ? m->owner[i] : fvmesh_across(f, i, xn));
     }
     return 0;
 }
@@ -89,7 +126,11 @@ static void cartesian_info(FvMesh *f)
     const Mesh *m = f->m;
     char *whole = mem_alloc((size_t)f->ncells + 1);
     for (int c = 0; c < f->ncells; c++) whole[c] = (char)whole_cell(m, c);
-    for (int i = 0; i < f->ninternal; i++) f->cartesian_face[i] = whole[m->owner[i]] && whole[m->neighbour[i]];
+    double x[3];
+    for (int i = 0; i < f->nfaces; i++) {
+        int n = fvmesh_across(f, i, x);
+        f->cartesian_face[i] = (char)(n >= 0 && whole[m->owner[i]] && whole[n]);
+    }
     free(whole);
     for (int k = 0; k < 3; k++) {
         f->hcart[k] = 0;
@@ -120,8 +161,10 @@ int fvmesh_init(FvMesh *f, Mesh *m, Err *e)
     f->face_patch = mem_alloc(((size_t)f->nboundary + 1) * sizeof(int));
     f->empty_face = mem_calloc(nf, 1);
     f->cartesian_face = mem_calloc(nf, 1);
+    f->cyc_face = mem_alloc(((size_t)f->nboundary + 1) * sizeof(int));
     for (int c = 0; c < f->ncells; c++) memcpy(f->node + 3 * c, mesh_cell_node(m, c), 3 * sizeof(double));
     boundary_info(f);
+    cyclic_pairs(f);
     cartesian_info(f);
     if (face_vectors(f, e) || distances(f, e)) {
         fvmesh_free(f);
@@ -140,6 +183,7 @@ void fvmesh_free(FvMesh *f)
     free(f->face_patch);
     free(f->empty_face);
     free(f->cartesian_face);
+    free(f->cyc_face);
     memset(f, 0, sizeof *f);
 }
 

@@ -19,6 +19,14 @@
 ** a boundary face; ht_f = h_f on internal faces and 0 on boundary faces, so
 ** the face-normal derivative is [xi(x_f + n h_f) - xi(x_f - n ht_f)] /
 ** (h_f + ht_f), symmetric inside and one-sided at a boundary.
+**
+** Cyclic faces are internal faces of the periodic domain: face i of a
+** cyclic patch pairs with face i of its neighbourPatch (OpenFOAM's rule;
+** fv/bc.c checks the geometry), the owner N of the partner face is the
+** periodic neighbour, and its node moved back by the translation T_f =
+** x_partner - x_f lies across the face (fvmesh_across).  Such a face gets
+** h_f = ht_f = the smaller of the two nodes' normal distances, and
+** cartesian_face when both cells are whole, exactly as an internal face.
 */
 #ifndef KIESEL_FVMESH_H
 #define KIESEL_FVMESH_H
@@ -39,7 +47,10 @@ typedef struct FvMesh {
     int *face_patch;      /* nboundary: patch of boundary face ninternal + i */
     char *empty_face;     /* nfaces: 1 on faces of empty patches (no flux) */
     char *cartesian_face; /* nfaces: 1 between two whole Cartesian cells
-                             (eq. 4.61: the face value is the mean) */
+                             (eq. 4.61: the face value is the mean),
+                             cyclic faces included */
+    int *cyc_face;        /* nboundary: the partner face of a cyclic face,
+                             else -1 */
     double hcart[3];      /* smallest Cartesian spacing per axis, or 0 */
 } FvMesh;
 
@@ -51,6 +62,20 @@ void fvmesh_free(FvMesh *f);
 
 /* Cartesian data contract present (cartesianGrid and cartesianCells)? */
 int fvmesh_has_cartesian(const FvMesh *f);
+
+/* The cell across face i and its node, moved by the periodic translation
+   for a cyclic face (the neighbour's node on an internal face); -1 on
+   other boundary faces (x untouched). */
+int fvmesh_across(const FvMesh *f, int i, double x[3]);
+
+/* Is face i coupled to a cell across it (internal or cyclic)? */
+static inline int fvmesh_two_sided(const FvMesh *f, int i)
+{
+    return i < f->ninternal || f->cyc_face[i - f->ninternal] >= 0;
+}
+
+/* The periodic translation of cyclic face i: partner centre - own centre. */
+void fvmesh_cyclic_shift(const FvMesh *f, int i, double T[3]);
 
 /* Total volume of the owned cells. */
 double fvmesh_volume(const FvMesh *f);

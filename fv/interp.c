@@ -189,7 +189,7 @@ static void sources(InterpIndex *ix, const FvMesh *f, int boundary_sources)
         int i = f->ninternal + b, s = f->ncells + b;
         memcpy(ix->spos + 3 * s, m->face_centre + 3 * i, 3 * sizeof(double));
         memcpy(ix->sh + 3 * s, ix->sh + 3 * m->owner[i], 3 * sizeof(double));
-        ix->is_src[s] = (char)(boundary_sources && !f->empty_face[i]);
+        ix->is_src[s] = (char)(boundary_sources && !f->empty_face[i] && f->cyc_face[b] < 0);
     }
     for (int k = 0; k < 3; k++) {
         ix->active[k] = k != f->empty_axis;
@@ -199,10 +199,24 @@ static void sources(InterpIndex *ix, const FvMesh *f, int boundary_sources)
     }
 }
 
+/* The translations of the cyclic pairs, both ways: a source at x_s also
+   stands at x_s - T for each (its periodic images next to the box). */
+static void translations(InterpIndex *ix, const FvMesh *f)
+{
+    const Mesh *m = f->m;
+    ix->ntrans = 0;
+    for (int p = 0; p < m->npatches && ix->ntrans < INTERP_MAXTRANS; p++) {
+        const Patch *pa = &m->patches[p];
+        if (pa->size == 0 || f->cyc_face[pa->start - f->ninternal] < 0) continue;
+        fvmesh_cyclic_shift(f, pa->start, ix->trans[ix->ntrans++]);
+    }
+}
+
 static void index_build(InterpIndex *ix, const FvMesh *f, int boundary_sources)
 {
     bucket_axes(ix, f);
     sources(ix, f, boundary_sources);
+    translations(ix, f);
     int nb = ix->nb[0] * ix->nb[1] * ix->nb[2];
     ix->boff = mem_calloc((size_t)nb + 1, sizeof(int));
     int *where = mem_alloc(sizeof(int) * (size_t)(ix->nsrc + 1));
@@ -278,19 +292,34 @@ static void gather_bucket(InterpIndex *ix, int b, const double *x, double R, dou
     }
 }
 
-static void gather(InterpIndex *ix, const double *x, double R, double beta, Gather *g)
+/* The buckets within R h_max of the query q into g; none when the window
+   misses the bucket grid (a periodic image far from the box). */
+static void gather_window(InterpIndex *ix, const double *q, double R, double beta, Gather *g)
 {
     int lo[3], hi[3];
     for (int k = 0; k < 3; k++) {
-        lo[k] = interp_locate(ix->bx[k], ix->nb[k], x[k] - R * ix->hmax[k]);
-        hi[k] = interp_locate(ix->bx[k], ix->nb[k], x[k] + R * ix->hmax[k]);
+        if (ix->active[k] && (q[k] + R * ix->hmax[k] < ix->bx[k][0] || q[k] - R * ix->hmax[k] > ix->bx[k][ix->nb[k]]))
+            return;
+        lo[k] = interp_locate(ix->bx[k], ix->nb[k], q[k] - R * ix->hmax[k]);
+        hi[k] = interp_locate(ix->bx[k], ix->nb[k], q[k] + R * ix->hmax[k]);
     }
+    for (int k = lo[2]; k <= hi[2]; k++)
+        for (int j = lo[1]; j <= hi[1]; j++)
+            for (int i = lo[0]; i <= hi[0]; i++) gather_bucket(ix, i + ix->nb[0] * (j + ix->nb[1] * k), q, R, beta, g);
+}
+
+/* Sources within R of x, and their periodic images: a source s seen
+   across a cyclic side, at x_s - T, is s found from the query x + T. */
+static void gather(InterpIndex *ix, const double *x, double R, double beta, Gather *g)
+{
     g->n = 0;
     g->exact = g->nearest = -1;
     g->dnear = INFINITY;
-    for (int k = lo[2]; k <= hi[2]; k++)
-        for (int j = lo[1]; j <= hi[1]; j++)
-            for (int i = lo[0]; i <= hi[0]; i++) gather_bucket(ix, i + ix->nb[0] * (j + ix->nb[1] * k), x, R, beta, g);
+    gather_window(ix, x, R, beta, g);
+    for (int t = 0; t < ix->ntrans; t++) {
+        double q[3] = {x[0] + ix->trans[t][0], x[1] + ix->trans[t][1], x[2] + ix->trans[t][2]};
+        gather_window(ix, q, R, beta, g);
+    }
 }
 
 /* Does the window of radius R cover every bucket? */
@@ -348,8 +377,9 @@ int interp_point(Interp *ip, const double x[3], int need, Stencil *s)
 void interp_face_point(const FvMesh *f, int i, int k, double x[3])
 {
     const double *c = f->m->face_centre + 3 * i, *n = f->nf + 3 * i;
-    double t = k == INTERP_PLUS ? f->ht[i] : k == INTERP_MINUS ? -f->h[i] : 0;
-    for (int a = 0; a < 3; a++) x[a] = c[a] + t * n[a];
+    double t = k == INTERP_PLUS ? f->ht[i] : k == INTERP_MINUS ? -f->h[i] : 0, T[3] = {0, 0, 0};
+    if (k == INTERP_PLUS && i >= f->ninternal && f->cyc_face[i - f->ninternal] >= 0) fvmesh_cyclic_shift(f, i, T);
+    for (int a = 0; a < 3; a++) x[a] = c[a] + t * n[a] + T[a];
 }
 
 /* One row of the method at point k of face i. */
@@ -357,18 +387,25 @@ static void method_row(Interp *ip, int i, int k)
 {
     const FvMesh *f = ip->f;
     Stencil *s = &ip->face;
-    int own = f->m->owner[i], bnd = i >= f->ninternal, nb = bnd ? -1 : f->m->neighbour[i];
-    if (bnd && k != INTERP_MINUS) {
+    double x[3];
+    int own = f->m->owner[i], nb = fvmesh_across(f, i, x);
+    if (nb < 0 && k != INTERP_MINUS) {
         stencil_add(s, f->ncells + i - f->ninternal, 1.0); /* eq. 4.61: xi_F */
     } else if (ip->o.method == INTERP_NONE || f->cartesian_face[i]) {
         if (k != INTERP_PLUS) stencil_add(s, own, k == INTERP_CENTRE ? 0.5 : 1.0);
         if (k != INTERP_MINUS) stencil_add(s, nb, k == INTERP_CENTRE ? 0.5 : 1.0);
     } else {
-        double x[3];
         interp_face_point(f, i, k, x);
         if (ip->o.method == INTERP_MULTILINEAR) interp_multilinear(ip, x, s);
-        else interp_shepard(ip, x, bnd ? 1 : 2, s);
+        else interp_shepard(ip, x, nb < 0 ? 1 : 2, s);
     }
+    stencil_end_row(s);
+}
+
+/* Row r of s appended again as a new row. */
+static void copy_row(Stencil *s, int r)
+{
+    for (int j = s->off[r]; j < s->off[r + 1]; j++) stencil_add(s, s->src[j], s->w[j]);
     stencil_end_row(s);
 }
 
@@ -384,6 +421,15 @@ static void face_rows(Interp *ip)
             continue;
         }
         ip->st.ncartesian += f->cartesian_face[i];
+        int g = i >= f->ninternal ? f->cyc_face[i - f->ninternal] : -1;
+        if (g >= 0 && g < i) {
+            /* the partner's points, seen from this side: its MINUS is our
+               PLUS and the reverse, so the two fluxes cancel exactly */
+            copy_row(&ip->face, interp_row(g, INTERP_CENTRE));
+            copy_row(&ip->face, interp_row(g, INTERP_MINUS));
+            copy_row(&ip->face, interp_row(g, INTERP_PLUS));
+            continue;
+        }
         for (int k = 0; k < INTERP_NPOINTS; k++) method_row(ip, i, k);
     }
     Stencil *s = &ip->face;

@@ -17,7 +17,11 @@
 ** (eq. 4.63, written there with the inner normal of the owner).  A
 ** boundary face's CENTRE row is its boundary value as well (eq. 4.61: xi_F
 ** at a boundary).  A face of an empty patch (2-D front and back) carries
-** no flux; its three rows are the owner's value.
+** no flux; its three rows are the owner's value.  A cyclic face is an
+** internal face of the periodic domain (fvmesh.h: h_f = ht_f, the
+** partner's owner across it): its PLUS point is taken at its periodic
+** image x_f + n_f ht_f + T_f inside the box (interp_face_point), and the
+** partner face's rows are its own with PLUS and MINUS swapped.
 **
 ** Eq. 4.61's face rule comes first for every method: on a face between two
 ** whole Cartesian cells (FvMesh.cartesian_face) CENTRE is the mean of the

@@ -9,11 +9,15 @@
 ** mesh's bounds.  Sources (cells 0 .. ncells-1, boundary faces ncells + b
 ** when boundarySources is on) sit in the bucket holding their position,
 ** so a query visits a bounded number of buckets and building is O(N).
+** With cyclic patches a query also visits the windows of x + T for every
+** translation T, so Shepard finds the sources across a periodic side.
 */
 #ifndef KIESEL_INTERP_IMPL_H
 #define KIESEL_INTERP_IMPL_H
 
 #include "interp.h"
+
+#define INTERP_MAXTRANS 6   /* three cyclic pairs, each patch its own way */
 
 typedef struct InterpIndex {
     int nb[3];          /* buckets per axis */
@@ -28,6 +32,8 @@ typedef struct InterpIndex {
     int block;          /* multilinear on a block grid without cartesianCells */
     int per[3];         /* multilinear: a cyclic pair spans the box along axis k */
     int pshift[3][3];   /* its lattice shift from the min side's image to the max side */
+    int ntrans;         /* cyclic translations (partner - own face centre) */
+    double trans[INTERP_MAXTRANS][3];
     int *cand;          /* scratch of a query */
     double *cw;
     size_t ccap;

@@ -53,6 +53,7 @@
 ** both ends of the period, as the solver's cyclic faces do; without it a
 ** cut channel's ends were mirrored at the box sides and the density error
 ** next to them was 0.24 at h = 0.1 instead of the interior's.
+** Cyclic faces are no boundary: they never make a reflection plane.
 ** A reflection whose line is nearly parallel to the plane, or whose master
 ** centre lies on it (|t_b| < TB_MIN: weights 1/t_b would blow up), or that
 ** finds no faces, takes xi_S = xi_M instead (InterpStats.ndegenerate).
@@ -200,7 +201,7 @@ static void lattice_point(const CartGrid *g, const int idx[3], double x[3])
 static int face_ok(const Interp *ip, int i, int mode, const double *lo, const double *hi, const double *dir)
 {
     const Mesh *m = ip->f->m;
-    if (i < m->ninternal || ip->f->empty_face[i]) return 0;
+    if (i < m->ninternal || ip->f->empty_face[i] || ip->f->cyc_face[i - m->ninternal] >= 0) return 0;
     if (mode == 1) return geom_dot(m->face_area + 3 * i, dir) > 0;
     const double *x = m->face_centre + 3 * i;
     for (int k = 0; k < 3; k++) {

@@ -121,7 +121,7 @@ static void prob_init(Prob *P, int method, double (*fn)(const double *))
     }
     FvPattern pat;
     fvpattern_init(&pat, &P->f);
-    fvm_pattern(&pat, &P->f, &P->ip, &P->bc);
+    fvm_pattern(&pat, &P->f, &P->ip);
     fvmatrix_init(&P->M, &pat);
     if (fvm_init(&P->d, &P->M, &P->f, &P->ip, &P->bc, &e)) {
         printf("fvm: %s\n", e.msg);

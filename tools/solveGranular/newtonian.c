@@ -88,7 +88,7 @@ static int init_solvers(Granular *g, const Dict *fvsolution, Err *e)
 {
     FvPattern pat;
     fvpattern_init(&pat, g->f);
-    fvm_pattern(&pat, g->f, g->ip, &g->bc_U);
+    fvm_pattern(&pat, g->f, g->ip);
     fvmatrix_init(&g->M, &pat);
     if (fvm_init(&g->op, &g->M, g->f, g->ip, &g->bc_U, e)) return -1;
     static const char *const names[3] = {"Ux", "Uy", "Uz"};
@@ -216,15 +216,15 @@ static void face_pressure(Granular *g)
 {
     const FvMesh *f = g->f;
     const Mesh *m = f->m;
-    double R = g->pr.RsT;
+    double R = g->pr.RsT, x[3];
     for (int c = 0; c < f->ncells; c++) g->crho[c] = R * g->rho->v[c];
     bc_values(&g->bc_rho, g->rho->v, g->xbr);
     for (int b = 0; b < f->nboundary; b++)
         g->xbr[b] = g->wall[b] ? g->crho[m->owner[f->ninternal + b]] : R * g->xbr[b];
     for (int i = 0; i < f->nfaces; i++) {
         if (f->empty_face[i]) g->pf[i] = 0;
-        else if (i >= f->ninternal) g->pf[i] = g->xbr[i - f->ninternal];
-        else if (f->cartesian_face[i]) g->pf[i] = 0.5 * (g->crho[m->owner[i]] + g->crho[m->neighbour[i]]);
+        else if (!fvmesh_two_sided(f, i)) g->pf[i] = g->xbr[i - f->ninternal];
+        else if (f->cartesian_face[i]) g->pf[i] = 0.5 * (g->crho[m->owner[i]] + g->crho[fvmesh_across(f, i, x)]);
         else g->pf[i] = stencil_apply(&g->ip->face, interp_row(i, INTERP_CENTRE), f->ncells, g->crho, g->xbr);
     }
 }

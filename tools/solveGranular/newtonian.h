@@ -19,7 +19,8 @@
 **         + rho^m g V                                        (eq. 4.66 [OURS])
 ** with p_f the mean of the two cells on a face between whole Cartesian
 ** cells (eq. 4.61), the interpolated CENTRE value on the other internal
-** faces, the owner's at a wall (zero normal gradient, spec §4.3) and
+** faces (cyclic faces are internal faces of the periodic domain, fvmesh.h),
+** the owner's at a wall (zero normal gradient, spec §4.3) and
 ** RsT times the density's boundary value elsewhere.  The unknown is u
 ** itself with the new density on the diagonal (doc/theory.md: the same as
 ** the thesis's (rho u)^{m+1} / rho^m to O(dt), boundary conditions stay in
