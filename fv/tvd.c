@@ -69,13 +69,21 @@ static void invert(const double G[9], int skip, double inv[9])
     for (int i = 0; i < 9; i++) inv[i] = c[i] / det;
 }
 
-/* d = node of n minus node of o; returns 1 / |d|^2. */
-static double face_d(const FvMesh *f, int o, int n, double d[3])
+/* The cell across face i (internal, or cyclic: fvmesh_across) into *n, d
+   = its node (moved back by the periodic translation) minus the owner's;
+   returns 1 / |d|^2, or 0 when nothing is across. */
+static double across(const FvMesh *f, int i, int *n, double d[3])
 {
-    for (int j = 0; j < 3; j++) d[j] = f->node[3 * n + j] - f->node[3 * o + j];
+    double x[3];
+    *n = f->empty_face[i] ? -1 : fvmesh_across(f, i, x);
+    if (*n < 0) return 0;
+    const double *xo = f->node + 3 * f->m->owner[i];
+    for (int j = 0; j < 3; j++) d[j] = x[j] - xo[j];
     return 1 / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
+/* Faces are visited once each: an internal face adds to both cells, a
+   cyclic face to its owner only (its partner face adds to the other). */
 void tvd_init(Tvd *t, const FvMesh *f, int ncomp)
 {
     memset(t, 0, sizeof *t);
@@ -86,22 +94,21 @@ void tvd_init(Tvd *t, const FvMesh *f, int ncomp)
     size_t nc = (size_t)f->ncells + 1;
     double *G = mem_calloc(9 * nc, sizeof(double));
     t->ginv = mem_alloc(9 * nc * sizeof(double));
-    t->wf = mem_alloc(((size_t)f->ninternal + 1) * sizeof(double));
-    for (int i = 0; i < f->ninternal; i++) {
-        int o = m->owner[i], n = m->neighbour[i];
-        double d[3], w = face_d(f, o, n, d), s = 0;
+    t->wf = mem_calloc((size_t)f->nfaces + 1, sizeof(double));
+    for (int i = 0; i < f->nfaces; i++) {
+        int o = m->owner[i], n;
+        double d[3], w = across(f, i, &n, d), s = 0;
+        if (n < 0) continue;
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++) {
                 G[9 * o + 3 * a + b] += w * d[a] * d[b];
-                G[9 * n + 3 * a + b] += w * d[a] * d[b];
+                if (i < f->ninternal) G[9 * n + 3 * a + b] += w * d[a] * d[b];
             }
         for (int j = 0; j < 3; j++) s += (m->face_centre[3 * i + j] - f->node[3 * o + j]) * d[j];
         t->wf[i] = fmin(1, fmax(0, s * w));
     }
     for (int c = 0; c < f->ncells; c++) invert(G + 9 * c, f->empty_axis, t->ginv + 9 * c);
     free(G);
-    t->cyclic = mem_calloc((size_t)f->nboundary + 1, 1);
-    for (int b = 0; b < f->nboundary; b++) t->cyclic[b] = !strcmp(m->patches[f->face_patch[b]].type, "cyclic");
     t->grad = mem_alloc(3 * (size_t)ncomp * nc * sizeof(double));
     t->lo = mem_alloc((size_t)ncomp * nc * sizeof(double));
     t->hi = mem_alloc((size_t)ncomp * nc * sizeof(double));
@@ -111,7 +118,6 @@ void tvd_free(Tvd *t)
 {
     free(t->ginv);
     free(t->wf);
-    free(t->cyclic);
     free(t->grad);
     free(t->lo);
     free(t->hi);
@@ -125,13 +131,17 @@ void tvd_grad(const Tvd *t, const double *xc, int ncomp, double *grad)
     size_t nk = (size_t)ncomp;
     /* grad first gathers the right-hand sides sum w d (x_N - x_C) */
     memset(grad, 0, 3 * nk * (size_t)f->ncells * sizeof(double));
-    for (int i = 0; i < f->ninternal; i++) {
-        int o = m->owner[i], n = m->neighbour[i];
-        double d[3], w = face_d(f, o, n, d);
+    for (int i = 0; i < f->nfaces; i++) {
+        int o = m->owner[i], n;
+        double d[3], w = across(f, i, &n, d);
+        if (n < 0) continue;
         for (size_t k = 0; k < nk; k++) {
             double dx = w * (xc[nk * (size_t)n + k] - xc[nk * (size_t)o + k]);
             double *go = grad + 3 * (nk * (size_t)o + k), *gn = grad + 3 * (nk * (size_t)n + k);
-            for (int j = 0; j < 3; j++) go[j] += dx * d[j], gn[j] += dx * d[j];
+            for (int j = 0; j < 3; j++) {
+                go[j] += dx * d[j];
+                if (i < f->ninternal) gn[j] += dx * d[j];
+            }
         }
     }
     for (int c = 0; c < f->ncells; c++) {
@@ -143,13 +153,13 @@ void tvd_grad(const Tvd *t, const double *xc, int ncomp, double *grad)
     }
 }
 
-/* lo and hi of every cell: the extremes of its value, its face
-   neighbours' and, for each boundary face, the value mirrored through the
-   face, 2 x_b - x_C (the boundary value is half a cell away; the mirror
-   stands where a neighbour would, so a smooth profile is not clipped at a
-   boundary), or x_b itself on a cyclic face (x_b is the partner cell's
-   value).  A mirror keeps the invariants of tvd.h: x_C - (2 x_b - x_C) =
-   2 (x_C - x_b) <= 2 x_C when x_b >= 0. */
+/* lo and hi of every cell: the extremes of its value, the values across
+   its internal and cyclic faces and, for each other boundary face, the
+   value mirrored through the face, 2 x_b - x_C (the boundary value is
+   half a cell away; the mirror stands where a neighbour would, so a
+   smooth profile is not clipped at a boundary).  A mirror keeps the
+   invariants of tvd.h: x_C - (2 x_b - x_C) = 2 (x_C - x_b) <= 2 x_C when
+   x_b >= 0. */
 static void bounds(Tvd *t, const double *xc, const double *xb, int ncomp)
 {
     const FvMesh *f = t->f;
@@ -160,17 +170,19 @@ static void bounds(Tvd *t, const double *xc, const double *xb, int ncomp)
     for (int i = 0; i < f->nfaces; i++) {
         if (f->empty_face[i]) continue;
         size_t o = nk * (size_t)m->owner[i];
-        if (i < f->ninternal) {
-            size_t n = nk * (size_t)m->neighbour[i];
+        double x[3];
+        int c = fvmesh_across(f, i, x);
+        if (c >= 0) {
+            size_t n = nk * (size_t)c;
             for (size_t k = 0; k < nk; k++) {
                 t->lo[o + k] = fmin(t->lo[o + k], xc[n + k]), t->hi[o + k] = fmax(t->hi[o + k], xc[n + k]);
+                if (i >= f->ninternal) continue;
                 t->lo[n + k] = fmin(t->lo[n + k], xc[o + k]), t->hi[n + k] = fmax(t->hi[n + k], xc[o + k]);
             }
         } else {
             const double *v = xb + nk * (size_t)(i - f->ninternal);
-            int mirror = !t->cyclic[i - f->ninternal];
             for (size_t k = 0; k < nk; k++) {
-                double g = mirror ? 2 * v[k] - xc[o + k] : v[k];
+                double g = 2 * v[k] - xc[o + k];
                 t->lo[o + k] = fmin(t->lo[o + k], g), t->hi[o + k] = fmax(t->hi[o + k], g);
             }
         }
@@ -208,23 +220,25 @@ void tvd_div(Tvd *t, const TvdScheme *s, const double *phi, const double *xc, co
     tvd_grad(t, xc, ncomp, t->grad);
     bounds(t, xc, xb, ncomp);
     memset(out, 0, sizeof(double) * nk * (size_t)f->ncells);
-    for (int i = 0; i < f->ninternal; i++) {
-        int o = m->owner[i], n = m->neighbour[i], fwd = phi[i] >= 0, u = fwd ? o : n, dn = fwd ? n : o;
-        double d[3], w = fwd ? t->wf[i] : 1 - t->wf[i];
-        face_d(f, u, dn, d);
+    for (int i = 0; i < f->nfaces; i++) {
+        if (f->empty_face[i]) continue;
+        int o = m->owner[i], n;
+        double d[3];
+        across(f, i, &n, d);
+        if (n < 0) { /* a boundary: upwind (eq. 4.60) */
+            const double *up = phi[i] >= 0 ? xc + nk * (size_t)o : xb + nk * (size_t)(i - f->ninternal);
+            for (size_t k = 0; k < nk; k++) out[nk * (size_t)o + k] += up[k] * phi[i];
+            continue;
+        }
+        int fwd = phi[i] >= 0, u = fwd ? o : n, dn = fwd ? n : o;
+        double w = fwd ? t->wf[i] : 1 - t->wf[i], sg = fwd ? 1 : -1;
         for (size_t k = 0; k < nk; k++) {
             size_t iu = nk * (size_t)u + k;
             const double *g = t->grad + 3 * iu;
-            double gd = g[0] * d[0] + g[1] * d[1] + g[2] * d[2];
+            double gd = sg * (g[0] * d[0] + g[1] * d[1] + g[2] * d[2]);
             double F = phi[i] * face_value(s, xc[iu], xc[nk * (size_t)dn + k], gd, t->lo[iu], t->hi[iu], w);
             out[nk * (size_t)o + k] += F;
-            out[nk * (size_t)n + k] -= F;
+            if (i < f->ninternal) out[nk * (size_t)n + k] -= F;
         }
-    }
-    for (int i = f->ninternal; i < f->nfaces; i++) {
-        if (f->empty_face[i]) continue;
-        int o = m->owner[i];
-        const double *up = phi[i] >= 0 ? xc + nk * (size_t)o : xb + nk * (size_t)(i - f->ninternal);
-        for (size_t k = 0; k < nk; k++) out[nk * (size_t)o + k] += up[k] * phi[i];
     }
 }

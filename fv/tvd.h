@@ -20,8 +20,10 @@
 ** grad x_U the least-squares gradient from the nodes of the face
 ** neighbours (weights 1/|d|^2; exact for linear fields on any grid), lo_U
 ** and hi_U the smallest and largest value of U, its face neighbours and
-** its boundary values mirrored through their faces (2 x_b - x_U; x_b on
-** a cyclic face).  Limiters (Sweby's TVD region, psi <= 2r, psi = 0
+** its boundary values mirrored through their faces (2 x_b - x_U).  A
+** cyclic face is an internal face of the periodic domain (fvmesh_across):
+** its partner's owner is the cell across it, in the gradient, the bounds
+** and the face value.  Limiters (Sweby's TVD region, psi <= 2r, psi = 0
 ** for r <= 0):
 **
 **   limitedLinear k:  psi = max(0, min(2r/k, 1))   (0 <= k <= 1; k = 1 most bounded)
@@ -33,10 +35,11 @@
 ** (x_U = 0 among values >= 0) emits nothing; and x_f - x_U <= (2w/k)
 ** (x_U - lo_U) <= (4w/k) x_U for values >= 0 (a mirror 2 x_b - x_U is
 ** >= -x_U), so a step keeps them >= 0 when dt/V sum_out phi (1 + 4w/k)
-** <= 1 (vanLeer: k = 1; 1 + 2w/k away from the boundary).  Boundary faces stay
-** upwind: an inflow face takes the boundary state, an outflow face the
-** cell's value (so the mass flow through a patch is the same product as
-** with upwind).  Vectors are limited component by component.
+** <= 1 (vanLeer: k = 1; 1 + 2w/k away from the boundary).  Other
+** boundary faces stay upwind: an inflow face takes the boundary state, an
+** outflow face the cell's value (so the mass flow through a patch is the
+** same product as with upwind).  Vectors are limited component by
+** component.
 */
 #ifndef KIESEL_TVD_H
 #define KIESEL_TVD_H
@@ -66,8 +69,8 @@ typedef struct Tvd {
     const FvMesh *f;
     int ncomp;            /* 0: upwind only, nothing allocated */
     double *ginv;         /* 9 ncells: inverse least-squares matrix (0 if singular) */
-    double *wf;           /* ninternal: w of the face seen from its owner */
-    char *cyclic;         /* nboundary: 1 on faces of cyclic patches */
+    double *wf;           /* nfaces: w of an internal or cyclic face seen
+                             from its owner (0 on other faces) */
     double *grad;         /* 3 ncomp ncells */
     double *lo, *hi;      /* ncomp ncells */
 } Tvd;
