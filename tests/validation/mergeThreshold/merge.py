@@ -1,0 +1,78 @@
+"""Table 5.3 (thesis §5.1.4): the merge threshold M_V on the periodic
+inclined channel.  The case is inclinedChannel/channel.py's (imported),
+with system/mergeCellsDict's threshold set to M_V.
+
+usage: merge.py BIN WORKDIR INCLINEDCHANNELDIR
+"""
+import math, os, re, subprocess, sys, time
+
+sys.path.insert(0, sys.argv[3])
+import channel as ch
+
+HDR = 'FoamFile { version 2.0; format ascii; class dictionary; object mergeCellsDict; }\n'
+# (h, M_V): thesis L2, Linf, u_max, CPU ms (spec §5.1.4, Table 5.3)
+RUNS = [(0.1, 2), (0.1, 16), (0.05, 2)]
+THESIS = {(0.1, 2): (2.680e-4, 1.189e-2, 1.131, 1133), (0.05, 2): (3.309e-5, 4.966e-3, 1.173, 9493),
+          (0.1, 16): (1.123e-4, 4.793e-3, 1.125, 9541)}
+
+def run(binp, d, h, inv):
+    ch.write_case(d, h, False)
+    open(os.path.join(d, 'system/mergeCellsDict'), 'w').write(HDR + 'threshold %r;\n' % (1.0 / inv))
+    secs = 0.0
+    for tool in ('blockGrid', 'cutCells', 'mergeCells', 'solveGranular'):
+        t0 = time.time()
+        with open(os.path.join(d, 'log.' + tool), 'w') as log:
+            if subprocess.call([os.path.join(binp, tool), '-case', d], stdout=log, stderr=subprocess.STDOUT):
+                sys.exit('FAIL mergeThreshold: %s failed in %s' % (tool, d))
+        secs = time.time() - t0
+    log = open(os.path.join(d, 'log.solveGranular')).read()
+    steps = len(re.findall(r'^Time = ', log, re.M))
+    dts = [float(x) for x in re.findall(r'^deltaT = (\S+)', log, re.M)]
+    dm = max(abs(float(x)) for x in re.findall(r'change since start = (\S+)', log))
+    m = re.search(r'unresolved cells:\s+(\d+)', open(os.path.join(d, 'log.mergeCells')).read())
+    V = ch.volumes(d)
+    rho, U = ch.field(os.path.join(d, '2/rho'), len(V)), ch.field(os.path.join(d, '2/U'), len(V))
+    vt = sum(V)
+    e = [r[0] - 1 for r in rho]
+    return dict(n=len(V), l2=math.sqrt(sum(v * x * x for v, x in zip(V, e)) / vt), li=max(abs(x) for x in e),
+                umax=max(math.sqrt(sum(c * c for c in u)) for u in U), secs=secs, steps=steps,
+                dtend=dts[-1], vmin=min(V) / (h * h * h), dm=dm, unres=int(m.group(1)) if m else 0)
+
+def main():
+    binp, work = sys.argv[1], sys.argv[2]
+    res = {}
+    for h, inv in RUNS:
+        res[(h, inv)] = run(binp, os.path.join(work, 'h%g_MV1_%d' % (h, inv)), h, inv)
+    print('Table 5.3: merge threshold M_V, periodic inclined channel (slope %d/%d, multilinear, maxCo 0.25, t = 2)'
+          % (ch.P, ch.Q))
+    print('  h      M_V    cells  min V/h^3  L2 (thesis)             Linf (thesis)           u_max (thesis)    '
+          'steps  dt(t=2)    solveGranular s (thesis CPU s)')
+    for h, inv in RUNS:
+        r, t = res[(h, inv)], THESIS[(h, inv)]
+        print('  %-5g  1/%-3d  %5d  %.4f     %.3e (%.3e)   %.3e (%.3e)   %.4f (%.3f)   %5d  %.3e  %6.2f (%.3f)%s' % (
+            h, inv, r['n'], r['vmin'], r['l2'], t[0], r['li'], t[1], r['umax'], t[2], r['steps'], r['dtend'],
+            r['secs'], t[3] / 1000.0, '  (%d unmerged cells)' % r['unres'] if r['unres'] else ''))
+    a, b, c = res[(0.1, 2)], res[(0.1, 16)], res[(0.05, 2)]
+    ratio = b['steps'] / a['steps']
+    print()
+    print('  steps M_V 1/16 : 1/2 at h = 0.1: %.2f; dt(t=2) ratio %.2f; smallest cell ratio %.2f '
+          '(thesis: dt about 8x smaller; CPU 9541/1133 = %.2f)' % (
+        ratio, a['dtend'] / b['dtend'], a['vmin'] / b['vmin'], 9541 / 1133.0))
+    print('  steps h 0.05 : h 0.1 at M_V 1/2: %.2f; time %.2f (thesis CPU %.2f)' % (
+        c['steps'] / a['steps'], c['secs'] / a['secs'], 9493 / 1133.0))
+    print('  time M_V 1/16 : h 0.05 (thesis: about equal, 9541/9493 = %.2f): %.2f' % (9541 / 9493.0, b['secs'] / c['secs']))
+    print()
+    nfail = 0
+    ok = 4 <= ratio <= 16
+    nfail += not ok
+    print('%s mergeThreshold_step_ratio: steps(M_V 1/16) / steps(M_V 1/2) = %d / %d = %.2f, thesis 8 (accepted 4 .. 16)'
+          % ('PASS' if ok else 'FAIL', b['steps'], a['steps'], ratio))
+    dm = max(r['dm'] for r in res.values())
+    ok = dm <= 1e-12
+    nfail += not ok
+    print('%s mergeThreshold_mass: largest relative mass change over all steps of the 3 runs %.1e (tolerance 1e-12)'
+          % ('PASS' if ok else 'FAIL', dm))
+    return 1 if nfail else 0
+
+if __name__ == '__main__':
+    sys.exit(main())

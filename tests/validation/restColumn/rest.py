@@ -1,0 +1,152 @@
+"""A closed box at rest under gravity, initialised with the exact
+continuous hydrostatic profile rho = exp(-g y / RsT) at the cell
+centroids; the spurious velocities at t = 1 and 2 under refinement.
+
+usage: rest.py BIN WORKDIR INCLINEDCHANNELDIR [N ...]
+"""
+import math, os, re, subprocess, sys, time
+
+sys.path.insert(0, sys.argv[3])
+import channel as ch   # polyMesh and field readers
+
+G, MU, RST, ANGLE = 9.81, 0.25, 6.0, 30.0
+T = int(os.environ.get('RESTCOLUMN_ENDTIME', '2'))   # end time; max |U| is reported at T/2 and T
+KINDS = [('cartesian', 'shepard'), ('cartesian', 'multilinear'), ('cut', 'shepard'), ('cut', 'multilinear'),
+         ('voronoi', 'shepard')]
+
+def hdr(o, c='dictionary'):
+    return 'FoamFile { version 2.0; format ascii; class %s; object %s; }\n' % (c, o)
+
+def centroids(d):
+    """Cell centroids: each face fanned into triangles from its vertex mean,
+    each triangle with the cell's face-centre mean a signed tetrahedron."""
+    pm = os.path.join(d, 'constant/polyMesh')
+    pts, faces = ch.tuples(pm + '/points'), ch.tuples(pm + '/faces')
+    own, nei = ch.labels(pm + '/owner'), ch.labels(pm + '/neighbour')
+    n = max(own) + 1
+    cf = [[] for _ in range(n)]
+    fc = []
+    for f, fa in enumerate(faces):
+        x = [pts[int(i)] for i in fa]
+        fc.append([sum(p[k] for p in x) / len(x) for k in range(3)])
+        cf[own[f]].append(f)
+        if f < len(nei): cf[nei[f]].append(f)
+    C = []
+    for c in range(n):
+        a = [sum(fc[f][k] for f in cf[c]) / len(cf[c]) for k in range(3)]
+        vt, m = 0.0, [0.0, 0.0, 0.0]
+        for f in cf[c]:
+            s = 1 if own[f] == c else -1
+            x = [pts[int(i)] for i in faces[f]]
+            for i in range(len(x)):
+                p, q, r = fc[f], x[i], x[(i + 1) % len(x)]
+                u = [p[k] - a[k] for k in range(3)]
+                v = [q[k] - a[k] for k in range(3)]
+                w = [r[k] - a[k] for k in range(3)]
+                dv = s * (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+                          + u[2] * (v[0] * w[1] - v[1] * w[0])) / 6
+                vt += dv
+                for k in range(3): m[k] += dv * (a[k] + p[k] + q[k] + r[k]) / 4
+        C.append([m[k] / vt for k in range(3)])
+    return C
+
+def write_case(d, n, kind, interp):
+    for s in ('system', 'constant', '0'): os.makedirs(os.path.join(d, s), exist_ok=True)
+    def w(f, s): open(os.path.join(d, f), 'w').write(s)
+    h = 1.0 / n
+    walls = ('boundary { xMin { name walls; type wall; } xMax { name walls; type wall; } yMin { name walls; type wall; } '
+             'yMax { name walls; type wall; } zMin { name frontAndBack; type empty; } '
+             'zMax { name frontAndBack; type empty; } }\n')
+    nb, lb = (n, 1.0) if kind == 'cartesian' else (int(round(1.5 * n)), 1.5)
+    w('system/blockGridDict', hdr('blockGridDict') +
+      'x { segments ((%r %d 1)); } y { segments ((%r %d 1)); } z { start %r; segments ((%r 1 1)); }\n'
+      % (lb, nb, lb, nb, -h / 2, h) + walls)
+    if kind != 'cartesian':
+        w('system/geometryDict', hdr('geometryDict') +
+          'surfaces { box { type wall; flow inside; shape box; min (-0.5 -0.5 -1); max (0.5 0.5 1); '
+          'rotate { axis (0 0 1); angle %r; } translate (0.75 0.75 0); } }\n' % ANGLE)
+        w('system/mergeCellsDict', hdr('mergeCellsDict') + 'threshold 0.5;\n')
+    w('constant/g', hdr('g', 'uniformDimensionedVectorField') + 'dimensions [0 1 -2 0 0 0 0]; value (0 %r 0);\n' % -G)
+    w('constant/granularProperties', hdr('granularProperties') +
+      'model Newtonian; NewtonianCoeffs { mu %r; RsT %r; }\n' % (MU, RST))
+    w('system/controlDict', hdr('controlDict') +
+      'application solveGranular; startFrom latestTime; startTime 0; stopAt endTime; endTime %d; deltaT 1e-4; '
+      'adjustTimeStep yes; maxCo 0.25; writeControl adjustableRunTime; writeInterval %g; writeFormat ascii; '
+      'writePrecision 17;\n' % (T, T / 2.0))
+    w('system/fvSchemes', hdr('fvSchemes') +
+      'divSchemes { default Gauss upwind; } interpolationSchemes { default %s; }\n' % interp)
+    w('system/fvSolution', hdr('fvSolution') +
+      'solvers { "U.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-13; relTol 0; } }\n')
+    w('0/U', hdr('U', 'volVectorField') + 'dimensions [0 1 -1 0 0 0 0]; internalField uniform (0 0 0); '
+      'boundaryField { ".*" { type noSlip; } frontAndBack { type empty; } }\n')
+
+def run(binp, d, n, kind, interp):
+    write_case(d, n, kind, interp)
+    tools = {'cartesian': ['blockGrid'], 'cut': ['blockGrid', 'cutCells', 'mergeCells'],
+             'voronoi': ['blockGrid', 'voronoiGrid']}[kind]
+    def call(tool):
+        with open(os.path.join(d, 'log.' + tool), 'w') as log:
+            if subprocess.call([os.path.join(binp, tool), '-case', d], stdout=log, stderr=subprocess.STDOUT):
+                return '%s failed in %s' % (tool, d)
+    for tool in tools:
+        e = call(tool)
+        if e: return dict(err=e)
+    C = centroids(d)
+    rho = ['%.17g' % math.exp(-G * c[1] / RST) for c in C]
+    open(os.path.join(d, '0/rho'), 'w').write(
+        hdr('rho', 'volScalarField') + 'dimensions [1 -3 0 0 0 0 0];\ninternalField nonuniform List<scalar> %d\n(\n%s\n)\n;\n'
+        % (len(rho), '\n'.join(rho)) + 'boundaryField { ".*" { type zeroGradient; } frontAndBack { type empty; } }\n')
+    t0 = time.time()
+    e = call('solveGranular')
+    secs = time.time() - t0
+    if e: return dict(err=e)
+    log = open(os.path.join(d, 'log.solveGranular')).read()
+    um = lambda t: max(math.sqrt(sum(x * x for x in u)) for u in ch.field(os.path.join(d, t, 'U'), len(C)))
+    return dict(err=None, cells=len(C), u1=um('%g' % (T / 2.0)), u2=um('%g' % T), steps=len(re.findall(r'^Time = ', log, re.M)),
+                dm=max(abs(float(x)) for x in re.findall(r'change since start = (\S+)', log)), secs=secs)
+
+def main():
+    binp, work = sys.argv[1], sys.argv[2]
+    ns = [int(x) for x in sys.argv[4:]] or [16, 32, 64]
+    print('Rest column: closed 1 x 1 box, g = (0 -%g 0), mu = %g, RsT = %g, noSlip, U = 0, rho = exp(-g y/RsT) '
+          'at the centroids, to t = %d' % (G, MU, RST, T))
+    print('  grid        interp       N   cells  steps  max|U| t=%-3g max|U| t=%-3d  order  mass change  time' % (T / 2.0, T))
+    nfail = 0
+    res = {}
+    for kind, interp in KINDS:
+        prev = None
+        for n in ns:
+            r = run(binp, os.path.join(work, '%s_%s_%d' % (kind, interp, n)), n, kind, interp)
+            res[(kind, interp, n)] = r
+            if r['err']:
+                print('  %-10s  %-11s  %3d  %s' % (kind, interp, n, r['err']))
+                prev = None
+                continue
+            o = math.log(prev / r['u2']) / math.log(2) if prev and r['u2'] > 0 else None
+            print('  %-10s  %-11s  %3d  %6d  %5d  %.3e    %.3e    %s  %.1e      %5.1f s' % (
+                kind, interp, n, r['cells'], r['steps'], r['u1'], r['u2'], '%5.2f' % o if o is not None else '    -',
+                r['dm'], r['secs']))
+            prev = r['u2']
+        sys.stdout.flush()
+    print()
+    for kind, interp in KINDS:
+        rs = [res[(kind, interp, n)] for n in ns]
+        bad = [r['err'] for r in rs if r['err']]
+        if bad:
+            nfail += 1
+            print('FAIL restColumn_%s_%s: %s' % (kind, interp, bad[0]))
+            continue
+        dm = max(r['dm'] for r in rs)
+        ok = dm <= 1e-12
+        nfail += not ok
+        print('%s restColumn_%s_%s_mass: largest relative mass change %.1e over N = %s (tolerance 1e-12)' % (
+            'PASS' if ok else 'FAIL', kind, interp, dm, ', '.join(map(str, ns))))
+        u = max(r['u2'] for r in rs)
+        ok = u <= 1e-12
+        nfail += not ok
+        print('%s restColumn_%s_%s_rest: max|U| at t = %d is %s for N = %s (goal: round-off, <= 1e-12)' % (
+            'PASS' if ok else 'FAIL', kind, interp, T, ', '.join('%.2e' % r['u2'] for r in rs), ', '.join(map(str, ns))))
+    return 1 if nfail else 0
+
+if __name__ == '__main__':
+    sys.exit(main())
