@@ -244,6 +244,7 @@ static void index_free(InterpIndex *ix)
     free(ix->is_src);
     free(ix->cand);
     free(ix->cw);
+    free(ix->near_wall);
 }
 
 /* ---- modified Shepard ---- */
@@ -398,6 +399,7 @@ static void method_row(Interp *ip, int i, int k)
         interp_face_point(f, i, k, x);
         if (ip->o.method == INTERP_MULTILINEAR) interp_multilinear(ip, x, s);
         else interp_shepard(ip, x, nb < 0 ? 1 : 2, s);
+        if (interp_lin_wants(ip, i)) interp_lin_correct(ip, i, x);
     }
     stencil_end_row(s);
 }
@@ -453,6 +455,7 @@ int interp_init(Interp *ip, const FvMesh *f, const InterpOpts *o, const char *gr
         interp_free(ip);
         return -1;
     }
+    interp_lin_init(ip);
     stencil_init(&ip->face);
     face_rows(ip);
     return 0;

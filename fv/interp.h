@@ -92,6 +92,9 @@ typedef struct InterpStats {
                               boundary plane (ghost = master value) */
     int nfallback;         /* multilinear points without any present
                               Cartesian source: Shepard's row instead */
+    int nlin;              /* PLUS/MINUS rows next to walls corrected to
+                              linear exactness (interp_lin.c) */
+    int nlinskip;          /* ... left as they were: sources not spanning */
     double mean_size;      /* stencil size (entries per row): mean, max */
     int max_size;
 } InterpStats;

@@ -34,6 +34,7 @@ typedef struct InterpIndex {
     int pshift[3][3];   /* its lattice shift from the min side's image to the max side */
     int ntrans;         /* cyclic translations (partner - own face centre) */
     double trans[INTERP_MAXTRANS][3];
+    char *near_wall;    /* ncells: 2 a wall cell, 1 its face neighbour (interp_lin.c) */
     int *cand;          /* scratch of a query */
     double *cw;
     size_t ccap;
@@ -47,6 +48,13 @@ int interp_locate(const double *x, int n, double v);
 void interp_shepard(Interp *ip, const double x[3], int need, Stencil *s);
 /* Appends the multilinear row at x to s. */
 void interp_multilinear(Interp *ip, const double x[3], Stencil *s);
+/* The wall cells and their neighbours (ix->near_wall). */
+void interp_lin_init(Interp *ip);
+/* Are face i's PLUS and MINUS rows corrected to linear exactness? */
+int interp_lin_wants(const Interp *ip, int i);
+/* Corrects the row being built in ip->face, at point x of face i, to
+   reproduce linear functions (interp_lin.c). */
+void interp_lin_correct(Interp *ip, int i, const double x[3]);
 /* Can multilinear run on this grid?  Else the reason in e. */
 int interp_ml_check(const Interp *ip, const char *grid, Err *e);
 
