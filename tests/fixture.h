@@ -16,9 +16,11 @@
 #include <string.h>
 
 #include "block.h"
+#include "cut.h"
 #include "dict.h"
 #include "geometry.h"
 #include "mem.h"
+#include "merge.h"
 #include "mesh.h"
 
 static inline void fixture_mesh(Mesh *m, double *const x[3], const int n[3])
@@ -91,6 +93,36 @@ static inline int fixture_geo(FixtureGeo *G, const char *text)
 static inline void fixture_geo_free(FixtureGeo *G)
 {
     geometry_free(&G->g);
+}
+
+/* grid cut by the geometry of text (fixture_geo's form) and, when merge
+   is set, merged with mergeCells' defaults, into out; the cut fluid
+   volume in *vol when vol is not NULL.  A failure ends the test program,
+   as fixture_mesh's. */
+static inline void fixture_cut(Mesh *out, const Mesh *grid, const char *text, int merge, double *vol)
+{
+    FixtureGeo G;
+    if (fixture_geo(&G, text)) exit(1);
+    Mesh cutm;
+    CutStats cs;
+    Err e;
+    if (cut_mesh(grid, &G.g, NULL, merge ? &cutm : out, &cs, &e)) {
+        printf("cut_mesh: %s\n", e.msg);
+        exit(1);
+    }
+    if (vol) *vol = cs.vol_fluid;
+    if (merge) {
+        MergeOpts mo;
+        MergeStats ms;
+        merge_opts_default(&mo);
+        if (merge_mesh(&cutm, &mo, out, &ms, &e)) {
+            printf("merge_mesh: %s\n", e.msg);
+            exit(1);
+        }
+        merge_stats_free(&ms);
+        mesh_free(&cutm);
+    }
+    fixture_geo_free(&G);
 }
 
 #endif

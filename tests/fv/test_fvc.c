@@ -17,25 +17,12 @@
 
 static void sphere_grid(Mesh *out, int n)
 {
-    Mesh grid, cutm;
+    Mesh grid;
     int nn[3] = {n, n, n};
     double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
     fixture_block(&grid, nn, lo, hi, -1);
-    FixtureGeo G;
-    if (fixture_geo(&G, "s { flow outside; shape sphere; centre (0.5 0.5 0.5); radius 0.3; }")) exit(1);
-    Err e;
-    CutStats cs;
-    MergeOpts mo;
-    MergeStats ms;
-    merge_opts_default(&mo);
-    if (cut_mesh(&grid, &G.g, NULL, &cutm, &cs, &e) || merge_mesh(&cutm, &mo, out, &ms, &e)) {
-        printf("grid: %s\n", e.msg);
-        exit(1);
-    }
-    merge_stats_free(&ms);
+    fixture_cut(out, &grid, "s { flow outside; shape sphere; centre (0.5 0.5 0.5); radius 0.3; }", 1, NULL);
     mesh_free(&grid);
-    mesh_free(&cutm);
-    fixture_geo_free(&G);
 }
 
 /* phi of a uniform velocity u. */

@@ -63,23 +63,10 @@ static void block2d(Mesh *m, int N)
 
 static void disc_grid(Mesh *out, int N)
 {
-    Mesh grid, cutm;
+    Mesh grid;
     block2d(&grid, N);
-    FixtureGeo G;
-    if (fixture_geo(&G, DISC)) exit(1);
-    Err e;
-    CutStats cs;
-    MergeOpts mo;
-    MergeStats ms;
-    merge_opts_default(&mo);
-    if (cut_mesh(&grid, &G.g, NULL, &cutm, &cs, &e) || merge_mesh(&cutm, &mo, out, &ms, &e)) {
-        printf("grid: %s\n", e.msg);
-        exit(1);
-    }
-    merge_stats_free(&ms);
+    fixture_cut(out, &grid, DISC, 1, NULL);
     mesh_free(&grid);
-    mesh_free(&cutm);
-    fixture_geo_free(&G);
 }
 
 /* Everything one problem needs on one grid. */

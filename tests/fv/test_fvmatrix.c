@@ -169,19 +169,12 @@ TEST(stencil_sources)
    neighbour, which give one entry. */
 TEST(cut_merged_pattern)
 {
-    Mesh grid, cutm, merged;
+    Mesh grid, merged;
     int n[3] = {12, 12, 12};
     double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
     fixture_block(&grid, n, lo, hi, -1);
-    FixtureGeo G;
-    EXPECT(fixture_geo(&G, "s { flow outside; shape sphere; centre (0.5 0.5 0.5); radius 0.3; }") == 0, "geometry");
+    fixture_cut(&merged, &grid, "s { flow outside; shape sphere; centre (0.5 0.5 0.5); radius 0.3; }", 1, NULL);
     Err e;
-    CutStats cs;
-    EXPECT(cut_mesh(&grid, &G.g, NULL, &cutm, &cs, &e) == 0, "%s", e.msg);
-    MergeOpts mo;
-    MergeStats ms;
-    merge_opts_default(&mo);
-    EXPECT(merge_mesh(&cutm, &mo, &merged, &ms, &e) == 0, "%s", e.msg);
     FvMesh f;
     EXPECT(fvmesh_init(&f, &merged, &e) == 0, "%s", e.msg);
     FvMatrix M;
@@ -197,11 +190,8 @@ TEST(cut_merged_pattern)
     EXPECT(npairs < f.ninternal, "no merged cell shares two faces with a neighbour: the case tests nothing");
     fvmatrix_free(&M);
     fvmesh_free(&f);
-    merge_stats_free(&ms);
     mesh_free(&merged);
-    mesh_free(&cutm);
     mesh_free(&grid);
-    fixture_geo_free(&G);
 }
 
 /* y = A x against the dense product. */

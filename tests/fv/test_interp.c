@@ -45,29 +45,10 @@ static void unit_block(Mesh *m, int N, int flat)
 /* A cut (and, when merge, merged) grid of the unit box; exits on failure. */
 static void cut_grid(Mesh *out, int N, int flat, const char *geo, int merge)
 {
-    Mesh grid, cutm;
+    Mesh grid;
     unit_block(&grid, N, flat);
-    FixtureGeo G;
-    if (fixture_geo(&G, geo)) exit(1);
-    Err e;
-    CutStats cs;
-    if (cut_mesh(&grid, &G.g, NULL, merge ? &cutm : out, &cs, &e)) {
-        printf("cut_mesh: %s\n", e.msg);
-        exit(1);
-    }
-    if (merge) {
-        MergeOpts mo;
-        MergeStats ms;
-        merge_opts_default(&mo);
-        if (merge_mesh(&cutm, &mo, out, &ms, &e)) {
-            printf("merge_mesh: %s\n", e.msg);
-            exit(1);
-        }
-        merge_stats_free(&ms);
-        mesh_free(&cutm);
-    }
+    fixture_cut(out, &grid, geo, merge, NULL);
     mesh_free(&grid);
-    fixture_geo_free(&G);
 }
 
 static void voronoi_grid(Mesh *out, int N, const char *geo)
