@@ -12,8 +12,8 @@
 **                   on the same grid: the integrals of a quadratic over the
 **                   two sides' cells add up to its integral over the box
 **                   (1e-12 relative; measured 9e-16); the centroid rule
-**                   misses by 3e-4, so the check tells the degree; the merged inside
-**                   grid gives the same sum as the cut one.
+**                   misses by 3e-4, so the check tells the degree; the
+**                   merged inside grid gives the same sum as the cut one.
 */
 #include "fixture.h"
 #include "quad.h"

@@ -35,7 +35,7 @@ study() {
     grep -qE '^(PASS|FAIL)' "$name.out" || fail "$name" "no verdict: $(tail -n 3 "$name.out")"
 }
 
-study disc_upwind -l1 0.8 disc-cut shepard upwind 16 32
+study disc_upwind -expect L1_rho=0.8 -expect L1_u=0.8 disc-cut shepard upwind 16 32
 # the L1 errors at N = 32: columns 6 (rho) and 10 (|u|) of the table
 row=$(awk '$1 == 32' disc_upwind.out)
 e_rho=$(awk '{ print $6 }' <<<"$row") e_u=$(awk '{ print $10 }' <<<"$row")
@@ -44,6 +44,6 @@ if [ -n "$row" ] && le "$e_rho" 2e-3 && le "$e_u" 8e-3; then
 else
     fail mms_disc_errors "L1 rho '$e_rho' (<= 2e-3), L1 |u| '$e_u' (<= 8e-3) at N = 32"
 fi
-study disc_limited -l1 1.2 disc-cut shepard limitedLinear 16 32
-study disc_voronoi -l1 0.4 disc-voronoi shepard upwind 16 32
-study ball_upwind -maxSkewness 0 -l1 0.8 ball-cut shepard upwind 8 12
+study disc_limited -expect L1_rho=1.2 -expect L1_u=1.2 disc-cut shepard limitedLinear 16 32
+study disc_voronoi -expect L1_rho=0.4 -expect L1_u=0.4 disc-voronoi shepard upwind 16 32
+study ball_upwind -maxSkewness 0 -expect L1_rho=0.8 -expect L1_u=0.8 ball-cut shepard upwind 8 12

@@ -16,7 +16,7 @@ typedef struct Study {
     int dim, voronoi, layers;
     double mu, RsT, tol, tmax, maxCo;
     double max_skewness;               /* mergeCells' maxSkewness */
-    double expect_l1, expect_linf;     /* < 0: none */
+    double expect[MMS_NQ];             /* expected orders by norm, < 0: none */
     MmsParams p;
 } Study;
 

@@ -28,7 +28,7 @@ void mms_study_default(Study *s)
     s->tmax = 20;
     s->maxCo = 0.5;
     s->max_skewness = 4;
-    s->expect_l1 = s->expect_linf = -1;
+    for (int q = 0; q < MMS_NQ; q++) s->expect[q] = -1;
     /* the centre off the grid's symmetry lines, so that cut cells of all
        shapes occur; rho in [0.90, 1.13], |u| <= 0.56 (Mach 0.23) */
     MmsParams p = {{0.511, 0.493, 0.507}, 0.4, 0.15, 0.1, 0.125, 0.5};
