@@ -50,6 +50,12 @@ def centroids(d):
         C.append([m[k] / vt for k in range(3)])
     return C
 
+def nodes(d):
+    """The cells' nodes as the solver takes them (mesh_cell_node): the
+    Voronoi seeds of constant/polyMesh/cellSeed, else the centroids."""
+    seed = os.path.join(d, 'constant/polyMesh/cellSeed')
+    return ch.tuples(seed) if os.path.exists(seed) else centroids(d)
+
 def write_case(d, n, kind, interp):
     for s in ('system', 'constant', '0'): os.makedirs(os.path.join(d, s), exist_ok=True)
     def w(f, s): open(os.path.join(d, f), 'w').write(s)
@@ -91,7 +97,7 @@ def run(binp, d, n, kind, interp):
     for tool in tools:
         e = call(tool)
         if e: return dict(err=e)
-    C = centroids(d)
+    C = nodes(d)
     rho = ['%.17g' % math.exp(-G * c[1] / RST) for c in C]
     open(os.path.join(d, '0/rho'), 'w').write(
         hdr('rho', 'volScalarField') + 'dimensions [1 -3 0 0 0 0 0];\ninternalField nonuniform List<scalar> %d\n(\n%s\n)\n;\n'
