@@ -21,11 +21,25 @@
 ** x_s the source's node (a boundary source: its face centre) at the
 ** periodic image nearest x_f, so only displacements of the order of the
 ** stencil enter, never exp(a.x) itself (no overflow on large domains; on
-** a cyclic face the node across is moved by the translation).  A wall
-** face (and a zero-gradient one) takes its owner's profile: p_f = p_P
-** exp(a.(x_f - x_P)).  The partner of a cyclic face repeats that face's
-** weights, so the two share p_f and the pressure force conserves
-** momentum as before.
+** a cyclic face the node across is moved by the translation).  The
+** partner of a cyclic face repeats that face's weights, so the two share
+** p_f and the pressure force conserves momentum as before.
+**
+** Boundary face b whose pressure comes from the cells (a wall, a zero
+** gradient): from the owner P and its face neighbours j,
+**
+**   p_b = sum_j c_j exp(a.(x_b - x_j)) p_j,   sum_j c_j = 1,
+**   sum_j c_j a.x_j = a.x_b,
+**
+** c the smallest change (least squares) of the owner alone (c_P = 1) that
+** puts the weighted nodes at the face's potential.  Any c summing to one
+** keeps the rest state; the potential condition also keeps a pressure
+** that is uniform along gravity to O((a h)^2) where the owner's profile
+** alone, p_P exp(a.(x_b - x_P)), is off by a.(x_b - x_P) = O(a h): the
+** inclined channel, whose gravity along the walls is carried by the wall
+** shear, not by the pressure, lost a third of its density accuracy that
+** way.  With a = 0, or a neighbourhood that does not spread in potential,
+** or weights beyond sum |c_j| = 3, c is the owner alone.
 **
 ** Gravity: the force on cell C is its own profile integrated over its
 ** closed surface (every face, empty ones too, S_f outward),
@@ -41,7 +55,7 @@
 **
 ** Memory: one double per entry of the CENTRE rows (the face stencil
 ** holds three rows per face), nfaces + 1 offsets, three doubles per cell
-** and one per boundary face.
+** and a row of the owner's neighbourhood per boundary face.
 */
 #ifndef KIESEL_HYDRO_H
 #define KIESEL_HYDRO_H

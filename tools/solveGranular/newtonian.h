@@ -31,9 +31,10 @@
 ** Cartesian cells (eq. 4.61), the interpolated CENTRE value on the other
 ** internal faces (cyclic faces are internal faces of the periodic domain,
 ** fvmesh.h), the owner's at a wall and at a zero-gradient open face (zero
-** normal gradient, spec §4.3; wellBalanced: along the owner's profile)
-** and RsT times the density's boundary value elsewhere; with g = 0 the
-** two are one scheme, bit for bit.  The unknown is u
+** normal gradient, spec §4.3; wellBalanced: the owner's neighbourhood at
+** the face's potential, each node along its profile, fv/hydro.h) and RsT
+** times the density's boundary value elsewhere; with g = 0 the two are
+** one scheme, bit for bit.  The unknown is u
 ** itself with the new density on the diagonal (doc/theory.md: the same as
 ** the thesis's (rho u)^{m+1} / rho^m to O(dt), boundary conditions stay in
 ** u, momentum is conserved).  A step that fails (a linear solve, a NaN, a
