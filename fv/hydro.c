@@ -8,6 +8,13 @@
 ** box periodic in two directions).  Sources lie within a stencil's reach
 ** of their face, far less than half a period, so the nearest image is the
 ** one the interpolation used.
+**
+** The boundary rows solve their least-squares problem in closed form (two
+** constraints, sum and potential, over the owner and its face
+** neighbours); a row is kept only while sum |c_j| <= 3, the bound
+** interp_lin.c puts on its corrected rows, so that a nearly flat
+** neighbourhood does not turn a wall pressure into a difference of large
+** numbers.
 */
 #include "hydro.h"
 
@@ -61,11 +68,14 @@ static void source_at(const Images *im, const FvMesh *f, int s, const double x[3
     }
 }
 
-/* exp(a.(x - y)): the hydrostatic profile from y to x. */
-static double profile(const double a[3], const double x[3], const double y[3])
+/* a.(x - y): the potential difference (over RsT) from y to x. */
+static double potential(const double a[3], const double x[3], const double y[3])
 {
-    return exp(a[0] * (x[0] - y[0]) + a[1] * (x[1] - y[1]) + a[2] * (x[2] - y[2]));
+    return a[0] * (x[0] - y[0]) + a[1] * (x[1] - y[1]) + a[2] * (x[2] - y[2]);
 }
+
+/* exp(a.(x - y)): the hydrostatic profile from y to x. */
+static double profile(const double a[3], const double x[3], const double y[3]) { return exp(potential(a, x, y)); }
 
 /* The weights of every face's CENTRE row; a cyclic face's partner built
    first lends its weights, as the stencil's rows are copies too. */
@@ -104,11 +114,11 @@ static void gravity_vectors(Hydro *h)
     h->grav = mem_calloc(3 * ((size_t)f->ncells + 1), sizeof(double));
     for (int i = 0; i < f->nfaces; i++) {
         const double *xf = m->face_centre + 3 * i, *S = m->face_area + 3 * i, *xo = f->node + 3 * m->owner[i];
-        double eo = expm1(h->a[0] * (xf[0] - xo[0]) + h->a[1] * (xf[1] - xo[1]) + h->a[2] * (xf[2] - xo[2]));
+        double eo = expm1(potential(h->a, xf, xo));
         for (int k = 0; k < 3; k++) h->grav[3 * m->owner[i] + k] += eo * S[k];
         if (i >= f->ninternal) continue;
         const double *xn = f->node + 3 * m->neighbour[i];
-        double en = expm1(h->a[0] * (xf[0] - xn[0]) + h->a[1] * (xf[1] - xn[1]) + h->a[2] * (xf[2] - xn[2]));
+        double en = expm1(potential(h->a, xf, xn));
         for (int k = 0; k < 3; k++) h->grav[3 * m->neighbour[i] + k] -= en * S[k];
     }
 }
@@ -172,13 +182,12 @@ static void wall_row(Hydro *h, int b)
     int i = f->ninternal + b, P = f->m->owner[i], cell[HYDRO_MAXNB], n = 1;
     const double *xb = f->m->face_centre + 3 * i, *xp = f->node + 3 * P, *a = h->a;
     double x[HYDRO_MAXNB][3], psi[HYDRO_MAXNB], c[HYDRO_MAXNB] = {1};
-    double phi = a[0] * (xb[0] - xp[0]) + a[1] * (xb[1] - xp[1]) + a[2] * (xb[2] - xp[2]);
+    double phi = potential(a, xb, xp);
     cell[0] = P;
     memcpy(x[0], xp, sizeof x[0]);
     if (phi != 0 && !f->empty_face[i] && f->cyc_face[b] < 0) {
         int m = neighbourhood(f, P, cell, x);
-        for (int j = 0; j < m; j++)
-            psi[j] = a[0] * (x[j][0] - xp[0]) + a[1] * (x[j][1] - xp[1]) + a[2] * (x[j][2] - xp[2]);
+        for (int j = 0; j < m; j++) psi[j] = potential(a, x[j], xp);
         if (equipotential(m, psi, phi, c)) n = m;
         else c[0] = 1;
     }
