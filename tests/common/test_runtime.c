@@ -379,7 +379,7 @@ TEST(keys_table)
         EXPECT(k->help && k->help[0], "no help for %s", k->key);
         required += k->def == NULL;
     }
-    EXPECT(n == 24 && required == 2, "%d keys, %d required", n, required);
+    EXPECT(n == 25 && required == 2, "%d keys, %d required", n, required);
 }
 
 int main(void)

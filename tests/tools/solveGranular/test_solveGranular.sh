@@ -185,7 +185,7 @@ for (t0, m0), (t1, m1), (t2, m2) in zip(d, d[1:], d[2:]):
         peaks.append((-b / (2 * a), m1))
 gaps = [q[0] - p[0] for p, q in zip(peaks, peaks[1:])]
 decay = all(q[1] < p[1] for p, q in zip(peaks, peaks[1:]))
-print('%d %.4f %.4f %.4f %d' % (len(peaks), sum(gaps) / max(len(gaps), 1), min(gaps or [0]), max(gaps or [0]), decay))')
+print("%d %.4f %.4f %.4f %d" % (len(peaks), sum(gaps) / max(len(gaps), 1), min(gaps or [0]), max(gaps or [0]), decay))')
 read -r npk period gmin gmax decays <<<"$wave"
 T=1.9596
 if [ $rc -eq 0 ] && [ "$last" = 8 ] && le 0.19 "$d0" && [ "${npk:-0}" -ge 3 ] && [ "${decays:-0}" = 1 ] &&
