@@ -82,13 +82,24 @@ typedef struct Run {
     double written;    /* the last time on disk */
 } Run;
 
+/* The VTK line of state_write or state_write_vtk (a block of its own in
+   the log), or the error. */
+static void report_vtk(int rc, Buf *log, Err *e)
+{
+    if (rc) err_die(e);
+    if (log->n) printf("%s\n", log->p);
+    buf_free(log);
+}
+
 static void write_time(Run *r, double t)
 {
     Err e;
     char name[64];
+    Buf log;
+    buf_init(&log);
     Field *f[3] = {&r->rho, &r->U, &r->p};
     gran_pressure(&r->g, &r->p);
-    if (state_write(&r->cs, &r->m, f, 3, t, r->tl.index, r->tl.dt, r->tl.dt0, name, &e)) err_die(&e);
+    report_vtk(state_write(&r->cs, &r->m, f, 3, t, r->tl.index, r->tl.dt, r->tl.dt0, name, &log, &e), &log, &e);
     r->written = t;
 }
 
@@ -165,7 +176,10 @@ static long run(const Args *a, Run *r, const Start *st)
     double mass0 = gran_mass(&r->g);
     timeloop_init(&r->tl, &r->cs.control, st->value, st->index, st->dt);
     r->written = st->value;
-    printf("\nStarting time loop at Time = %s, total mass %.15g\n\n", st->name, mass0);
+    Buf log;
+    buf_init(&log);
+    report_vtk(state_write_vtk(&r->cs, &r->m, st->name, &log, &e), &log, &e);
+    printf("Starting time loop at Time = %s, total mass %.15g\n\n", st->name, mass0);
     while (timeloop_running(&r->tl) && !stop_signal) {
         int changed = runtime_reread(&r->cs.control, &e);
         if (changed < 0) err_warn("%s (keeping the old settings)", e.msg);

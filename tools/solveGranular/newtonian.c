@@ -142,6 +142,7 @@ int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProp
     g->U = U;
     if (bc_init(&g->bc_rho, rho, f, e)) return -1;
     if (bc_init(&g->bc_U, U, f, e)) return -1;
+    if (bc_check_open(&g->bc_rho, &g->bc_U, rho, U, sqrt(pr->RsT), e)) return -1;
     mark_walls(g);
     alloc_work(g);
     return linsolve_init(e) || init_solvers(g, fvsolution, e) ? -1 : 0;
@@ -173,12 +174,7 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-int gran_open_patch(const Granular *g, int q)
-{
-    BcKind k = g->bc_U.patch[q].kind;
-    return k != BC_NO_SLIP && k != BC_MOVING_WALL && k != BC_SLIP && k != BC_SYMMETRY_PLANE && k != BC_EMPTY &&
-           k != BC_CYCLIC;
-}
+int gran_open_patch(const Granular *g, int q) { return bc_kind_open(g->bc_U.patch[q].kind); }
 
 /* The mass flow out of each open patch, the boundary part of the upwind
    divergence of rho (the same products fvc_div_upwind sums), and its
