@@ -30,6 +30,7 @@ static const ArgDict dicts[] = {
     {"constant/granularProperties", props_keys, "constant/g (optional, no file: no gravity): dimensions [0 1 -2 0 0 0 0]; value (gx gy gz);"},
     {"constant/granularProperties: NewtonianCoeffs", props_newtonian_keys, NULL},
     {"system/fvSchemes: divSchemes", gran_div_keys, NULL},
+    {"system/fvSchemes: gravitySchemes", gran_gravity_keys, NULL},
     {"system/fvSchemes: interpolationSchemes", interp_keys, NULL},
     {"system/fvSchemes: interpolationSchemes.shepardCoeffs", interp_shepard_keys, NULL},
     {"system/fvSolution: solvers.Ux, Uy, Uz", linsolve_keys, NULL},
@@ -138,8 +139,8 @@ static void read_case(Run *r, const Args *a, Interp *ip, FvMesh *fm, Start *st)
     if (props_read(&pr, r->cs.dir, &e)) err_die(&e);
     Dict *schemes = read_system(&r->cs, "system/fvSchemes"), *sol = read_system(&r->cs, "system/fvSolution");
     InterpOpts io;
-    TvdScheme div[2];
-    if (gran_read_div(schemes, div, &e) || interp_read_opts(schemes, &io, &e) || state_start(&r->cs, st, &e))
+    GranSchemes sch;
+    if (gran_read_schemes(schemes, &sch, &e) || interp_read_opts(schemes, &io, &e) || state_start(&r->cs, st, &e))
         err_die(&e);
     char *mpath = case_path(&r->cs, "constant/polyMesh");
     if (mesh_read(&r->m, mpath, &e) || fvmesh_init(fm, &r->m, &e) || interp_init(ip, fm, &io, mpath, &e)) err_die(&e);
@@ -148,7 +149,7 @@ static void read_case(Run *r, const Args *a, Interp *ip, FvMesh *fm, Start *st)
         err_die(&e);
     print_warnings(&r->rho);
     print_warnings(&r->U);
-    if (gran_init(&r->g, fm, ip, &pr, div, &r->rho, &r->U, sol, &e)) err_die(&e);
+    if (gran_init(&r->g, fm, ip, &pr, &sch, &r->rho, &r->U, sol, &e)) err_die(&e);
     double zero = 0;
     field_init(&r->p, &r->m, "p", 1, &zero, "calculated");
     r->p.dims[0] = 1, r->p.dims[1] = -1, r->p.dims[2] = -2;

@@ -28,7 +28,16 @@ const DictKey gran_div_keys[] = {
     {"div(phi,U)", "default", "convection of momentum rho u"},
     {NULL, NULL, NULL}};
 
-int gran_read_div(const Dict *fvschemes, TvdScheme div[2], Err *e)
+const char *const gran_gravity_names[] = {"wellBalanced", "cellSource", NULL};
+
+const DictKey gran_gravity_keys[] = {
+    {"default", "wellBalanced",
+     "pressure force and gravity: wellBalanced (each cell's hydrostatic profile p = RsT rho exp(g.(x - x_C)/RsT) "
+     "carried to the faces: a column at rest stays at rest to round-off on every grid) | cellSource (the "
+     "plain face pressure and rho_C g V_C: no rest state on cut and Voronoi grids); the same when g = 0"},
+    {NULL, NULL, NULL}};
+
+static int read_div(const Dict *fvschemes, TvdScheme div[2], Err *e)
 {
     static const char *const keys[2] = {"div(phi,rho)", "div(phi,U)"};
     TvdScheme def = {TVD_UPWIND, 1};
@@ -47,6 +56,20 @@ int gran_read_div(const Dict *fvschemes, TvdScheme div[2], Err *e)
             return err_set(e, d->file, d->line, "divSchemes: %s missing (default is none)", keys[j]);
     }
     return 0;
+}
+
+static int read_gravity(const Dict *fvschemes, int *scheme, Err *e)
+{
+    *scheme = GRAN_WELL_BALANCED;
+    const Dict *d = dict_subdict_opt(fvschemes, "gravitySchemes");
+    if (!d) return 0;
+    if (dict_check_keys(d, gran_gravity_keys, e)) return -1;
+    return dict_choice_or(d, "default", gran_gravity_names, GRAN_WELL_BALANCED, scheme, e);
+}
+
+int gran_read_schemes(const Dict *fvschemes, GranSchemes *sch, Err *e)
+{
+    return read_div(fvschemes, sch->div, e) || read_gravity(fvschemes, &sch->gravity, e) ? -1 : 0;
 }
 
 /* Impermeable boundary faces of U: noSlip, movingWall, slip, symmetryPlane. */
@@ -101,16 +124,19 @@ static int init_solvers(Granular *g, const Dict *fvsolution, Err *e)
     return 0;
 }
 
-int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, const TvdScheme div[2],
+int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, const GranSchemes *sch,
               Field *rho, Field *U, const Dict *fvsolution, Err *e)
 {
     memset(g, 0, sizeof *g);
     g->f = f;
-    g->div_rho = div[0];
-    g->div_U = div[1];
-    tvd_init(&g->tvd, f, div[0].kind == TVD_UPWIND && div[1].kind == TVD_UPWIND ? 0 : 3);
+    g->div_rho = sch->div[0];
+    g->div_U = sch->div[1];
+    tvd_init(&g->tvd, f, sch->div[0].kind == TVD_UPWIND && sch->div[1].kind == TVD_UPWIND ? 0 : 3);
     g->ip = ip;
     g->pr = *pr;
+    g->gravity = sch->gravity;
+    static const double none[3] = {0, 0, 0};
+    hydro_init(&g->hy, f, ip, g->gravity == GRAN_WELL_BALANCED ? pr->g : none, pr->RsT);
     g->rho = rho;
     g->U = U;
     if (bc_init(&g->bc_rho, rho, f, e)) return -1;
@@ -131,6 +157,7 @@ void gran_free(Granular *g)
     if (g->bc_U.fm) bc_free(&g->bc_U);
     if (g->bc_rho.fm) bc_free(&g->bc_rho);
     tvd_free(&g->tvd);
+    if (g->hy.off) hydro_free(&g->hy);
     void *arr[] = {g->wall, g->phi, g->pf, g->rho1, g->U1, g->rhoU, g->conv, g->force,
                    g->crho, g->x,   g->uk, g->xb,   g->xb3, g->xbr,  g->patch_out};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
@@ -210,22 +237,27 @@ double gran_courant(Granular *g, double dt, double *mean)
 
 double gran_mass(const Granular *g) { return fvc_total(g->f, g->rho->v); }
 
-/* Face pressures p_f (newtonian.h) of p = RsT rho. */
+/* Does boundary face b take its owner's pressure (a wall, or a zero
+   gradient of rho)? */
+static int owner_pressure(const Granular *g, int b)
+{
+    return g->wall[b] || g->bc_rho.patch[g->f->face_patch[b]].kind == BC_ZERO_GRADIENT;
+}
+
+/* Face pressures p_f (newtonian.h) of p = RsT rho: the boundary pressures
+   first (from the owner's neighbourhood, fv/hydro.h, or RsT rho_b), then
+   every face's CENTRE row through hydro_face (a boundary face's row is
+   its boundary value; with wellBalanced each source reconstructed to the
+   face). */
 static void face_pressure(Granular *g)
 {
     const FvMesh *f = g->f;
-    const Mesh *m = f->m;
-    double R = g->pr.RsT, x[3];
+    double R = g->pr.RsT;
     for (int c = 0; c < f->ncells; c++) g->crho[c] = R * g->rho->v[c];
     bc_values(&g->bc_rho, g->rho->v, g->xbr);
     for (int b = 0; b < f->nboundary; b++)
-        g->xbr[b] = g->wall[b] ? g->crho[m->owner[f->ninternal + b]] : R * g->xbr[b];
-    for (int i = 0; i < f->nfaces; i++) {
-        if (f->empty_face[i]) g->pf[i] = 0;
-        else if (!fvmesh_two_sided(f, i)) g->pf[i] = g->xbr[i - f->ninternal];
-        else if (f->cartesian_face[i]) g->pf[i] = 0.5 * (g->crho[m->owner[i]] + g->crho[fvmesh_across(f, i, x)]);
-        else g->pf[i] = stencil_apply(&g->ip->face, interp_row(i, INTERP_CENTRE), f->ncells, g->crho, g->xbr);
-    }
+        g->xbr[b] = owner_pressure(g, b) ? hydro_boundary(&g->hy, b, g->crho) : R * g->xbr[b];
+    for (int i = 0; i < f->nfaces; i++) g->pf[i] = f->empty_face[i] ? 0 : hydro_face(&g->hy, i, g->crho, g->xbr);
 }
 
 /* The explicit parts: new density, momentum convection, pressure force. */
@@ -266,9 +298,10 @@ static int solve_component(Granular *g, int j, double dt, Err *e)
     fvmatrix_zero_rhs(M);
     fvm_laplacian_rhs(&g->op, M, k, g->pr.mu);
     for (int c = 0; c < M->nrows; c++) {
-        double V = f->m->cell_vol[c];
-        M->rhs[c] += V * g->rhoU[3 * c + k] / dt - g->conv[3 * c + k] - g->force[3 * c + k] +
-                     g->rho->v[c] * g->pr.g[k] * V;
+        double V = f->m->cell_vol[c], rho = g->rho->v[c];
+        double F = g->gravity == GRAN_WELL_BALANCED ? g->pr.RsT * rho * g->hy.grav[3 * c + k] /* fv/hydro.h */
+                                                    : rho * g->pr.g[k] * V;
+        M->rhs[c] += V * g->rhoU[3 * c + k] / dt - g->conv[3 * c + k] - g->force[3 * c + k] + F;
     }
     component(f, g->U->v, k, g->x);
     double t1 = now();

@@ -17,8 +17,8 @@
 #     reflects decay slowly);
 #   - bad input: a misspelt model keyword, an unknown boundary type, a
 #     field without an entry for a patch of the grid, fvSolution with an
-#     unknown solver: each a file:line message, exit 1, no time step run
-#     and no time directory written;
+#     unknown solver, an unknown gravitySchemes entry: each a file:line
+#     message, exit 1, no time step run and no time directory written;
 #   - restart: 120 steps in one run against 60 steps (stopAt nextWrite,
 #     binary) and a restart from there (startFrom latestTime): the last
 #     time directories are identical (cmp of rho, U, p, uniform/time);
@@ -101,7 +101,7 @@ lasttime() { (cd "$1" && ls -d [0-9]* | sort -g | tail -n 1); }
 h=$("$BIN/solveGranular" -help 2>&1)
 missing=
 for k in startFrom endTime deltaT writeControl purgeWrite adjustTimeStep maxCo maxDeltaT model NewtonianCoeffs mu RsT \
-    'div(phi,U)' 'div(phi,rho)' shepardCoeffs beta radius boundarySources solver preconditioner tolerance relTol maxIter \
+    'div(phi,U)' 'div(phi,rho)' gravitySchemes wellBalanced cellSource shepardCoeffs beta radius boundarySources solver preconditioner tolerance relTol maxIter \
     petscOptions constant/g; do
     printf '%s\n' "$h" | grep -qF -- "$k" || missing="$missing $k"
 done
@@ -193,6 +193,8 @@ bad boundary_type 0/U 's/type slip;/type slipp;/' '0/U:[0-9]+: .*slipp'
 bad patch_missing 0/rho 's/outlet { type zeroGradient; }//' '0/rho(:[0-9]+)?: .*outlet'
 bad solver system/fvSolution 's/PBiCGStab/PBiCGStabb/' 'fvSolution:[0-9]+: .*PBiCGStabb'
 bad div_scheme system/fvSchemes 's/Gauss upwind/Gauss linear/' 'fvSchemes:[0-9]+: .*Gauss upwind'
+bad gravity_scheme system/fvSchemes 's/interpolationSchemes/gravitySchemes { default wellBalancd; } interpolationSchemes/' \
+    'fvSchemes:[0-9]+: .*wellBalancd'
 
 # ---- restart: bit-identical continuation from binary output ----
 c=rs
