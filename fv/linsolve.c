@@ -19,8 +19,9 @@
 ** BiCGStab with ILU(0), whose factor alone is a copy of the matrix) live
 ** in a LinCore that several systems on one matrix may share
 ** (linsolve_new_shared): Ux, Uy and Uz with the same solver,
-** preconditioner, maxIter and petscOptions need one, not three.  Each system keeps its own name, fvSolution line and tolerances
-** (the convergence test reads them per solve); the core keeps the options
+** preconditioner, maxIter and petscOptions need one, not three.  Each
+** system keeps its own name, fvSolution line and tolerances (the
+** convergence test reads them per solve); the core keeps the options
 ** prefix of the first system, so a system whose own prefix is named in
 ** PETSc's options database (PETSC_OPTIONS) gets a core of its own.
 **

@@ -439,6 +439,7 @@ static const char shared_fvsolution[] =
     "    Ua    { solver PBiCGStab; preconditioner DILU; tolerance 1e-10; maxIter 400; }\n"
     "    Ub    { solver PCG; preconditioner DIC; tolerance 1e-10; maxIter 500; }\n"
     "    Uc    { solver PBiCGStab; preconditioner DILU; tolerance 1e-6; maxIter 500; }\n"
+    "    Uq    { solver PBiCGStab; preconditioner DILU; tolerance 1e-10; maxIter 500; }\n"
     "    lu    { solver preonly; preconditioner lu; }\n"
     "}\n";
 
@@ -457,9 +458,10 @@ static LinSystem *system_of(const Dict *d, const char *name, LinSystem *with, Fv
     return L;
 }
 
-/* Ux, Uy, Uz, Ua, Ub, Uc on one matrix, each but Ux made to share Ux's
-   solver: Uy (another tolerance) shares it; Uz (petscOptions), Ua
-   (maxIter), Ub (solver) do not.  Uy's solve on the shared solver after
+/* Ux, Uy, Uz, Ua, Ub, Uc, Uq on one matrix, each but Ux made to share
+   Ux's solver: Uy (another tolerance) shares it; Uz (petscOptions), Ua
+   (maxIter), Ub (solver) do not, nor Uq, whose prefix PETSC_OPTIONS names
+   (main sets "-Uq_ksp_type gmres" before PETSc starts).  Uy's solve on the shared solver after
    Ux's (tracked: the preconditioner kept) equals a fresh unshared Uy
    solve to the bit; Uc (shared) on a right-hand side with a NaN fails
    naming Uc and its line. */
@@ -473,14 +475,17 @@ TEST(shared_solver)
     shift = 1;
     grid_make(&g, 32, 0);
     shift = 0;
-    LinSettings s[7];
-    static const char *const names[6] = {"Ux", "Uy", "Uz", "Ua", "Ub", "Uc"};
-    LinSystem *L[6];
+    LinSettings s[8];
+    static const char *const names[7] = {"Ux", "Uy", "Uz", "Ua", "Ub", "Uc", "Uq"};
+    LinSystem *L[7];
     L[0] = system_of(d, names[0], NULL, &g.M, &s[0]);
-    for (int j = 1; j < 6; j++) L[j] = system_of(d, names[j], L[0], &g.M, &s[j]);
+    for (int j = 1; j < 7; j++) L[j] = system_of(d, names[j], L[0], &g.M, &s[j]);
     EXPECT(linsolve_shares(L[0], L[1]) && linsolve_shares(L[0], L[5]), "Uy, Uc do not share Ux's solver");
     EXPECT(!linsolve_shares(L[0], L[2]) && !linsolve_shares(L[0], L[3]) && !linsolve_shares(L[0], L[4]),
            "Uz, Ua or Ub shares Ux's solver");
+    EXPECT(!linsolve_shares(L[0], L[6]) && strcmp(linsolve_describe(L[6]), "gmres+ilu") == 0,
+           "Uq: %s, %s Ux's solver (PETSC_OPTIONS names its prefix)", linsolve_describe(L[6]),
+           linsolve_shares(L[0], L[6]) ? "shares" : "does not share");
     int nc = g.f.ncells;
     double *x = calloc((size_t)nc, sizeof *x), *y = calloc((size_t)nc, sizeof *y), *y1 = calloc((size_t)nc, sizeof *y1);
     LinStats sx, sy, sy1, sc;
@@ -488,7 +493,7 @@ TEST(shared_solver)
     EXPECT(linsolve_solve_tracked(L[1], y, &sy, &e) == 0, "%s", e.msg);
     EXPECT(sx.final <= 1e-10 && sy.final <= 1e-3 && sy.iters < sx.iters,
            "Ux: %.3e after %d, Uy: %.3e after %d (each its own tolerance)", sx.final, sx.iters, sy.final, sy.iters);
-    LinSystem *Ly = system_of(d, "Uy", NULL, &g.M, &s[6]);
+    LinSystem *Ly = system_of(d, "Uy", NULL, &g.M, &s[7]);
     EXPECT(linsolve_solve(Ly, y1, &sy1, &e) == 0, "%s", e.msg);
     EXPECT(memcmp(y, y1, sizeof(double) * (size_t)nc) == 0 && sy.iters == sy1.iters && sy.final == sy1.final,
            "Uy shared and alone differ: %d and %d iterations, %.17g and %.17g", sy.iters, sy1.iters, sy.final,
@@ -506,9 +511,9 @@ TEST(shared_solver)
     memset(y, 0, sizeof(double) * (size_t)nc);
     EXPECT(linsolve_solve_tracked(L[1], y, &sy, &e) == 0 && memcmp(y, y1, sizeof(double) * (size_t)nc) == 0,
            "Uy after Ux was freed: %s", e.msg);
-    for (int j = 1; j < 6; j++) linsolve_free(L[j]);
+    for (int j = 1; j < 7; j++) linsolve_free(L[j]);
     linsolve_free(Ly);
-    for (int j = 0; j < 7; j++) linsolve_settings_free(&s[j]);
+    for (int j = 0; j < 8; j++) linsolve_settings_free(&s[j]);
     free(x);
     free(y);
     free(y1);
@@ -554,6 +559,7 @@ TEST(tracked_preconditioner)
 
 int main(void)
 {
+    setenv("PETSC_OPTIONS", "-Uq_ksp_type gmres", 1); /* read when PETSc starts: shared_solver */
     if (getenv("KIESEL_LINSOLVE_BENCH")) {
         bench();
         linsolve_finalize();
