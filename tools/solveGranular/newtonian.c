@@ -4,9 +4,10 @@
 ** The step computes the new state into its own arrays (rho1, U1) and
 ** copies it into the fields only when every solve converged and every
 ** value is finite with a positive density, so a failed step loses
-** nothing.  Components are solved in order x, y, z on one matrix, each
-** assembled anew (the boundary coefficients a, b differ per component:
-** slip).  The velocity component along the empty axis of a 2-D grid is
+** nothing.  Components are solved in order x, y, z on one matrix,
+** assembled once a step and again only for a component whose boundary
+** coefficients differ (slip), and with one PETSc solver when their
+** fvSolution entries agree (fv/linsolve.h).  The velocity component along the empty axis of a 2-D grid is
 ** not solved and keeps its value, as OpenFOAM's solvers do.
 */
 #include "newtonian.h"
@@ -88,7 +89,6 @@ static void alloc_work(Granular *g)
 {
     size_t nc = (size_t)g->f->ncells + 1, nf = (size_t)g->f->nfaces + 1, nb = (size_t)g->f->nboundary + 1;
     g->phi = mem_calloc(nf, sizeof(double));
-    g->cf = mem_alloc(nf * sizeof(double));
     g->pf = mem_calloc(nf, sizeof(double));
     g->rho1 = mem_alloc(nc * sizeof(double));
     g->U1 = mem_alloc(3 * nc * sizeof(double));
@@ -102,8 +102,6 @@ static void alloc_work(Granular *g)
     g->xb3 = mem_alloc(3 * nb * sizeof(double));
     g->xbr = mem_alloc(nb * sizeof(double));
     g->patch_out = mem_calloc((size_t)g->bc_rho.npatches + 1, sizeof(double));
-    double c = sqrt(g->pr.RsT);
-    for (size_t i = 0; i < nf; i++) g->cf[i] = c;
 }
 
 /* The matrix, its diffusion positions and the solvers of the components. */
@@ -119,7 +117,8 @@ static int init_solvers(Granular *g, const Dict *fvsolution, Err *e)
         if (k != g->f->empty_axis) g->axis[g->naxes++] = k;
     for (int j = 0; j < g->naxes; j++) {
         if (linsolve_settings(&g->set[j], fvsolution, names[g->axis[j]], e)) return -1;
-        g->L[j] = linsolve_new(&g->set[j], &g->M, e);
+        /* one PETSc solver for all components when their settings agree */
+        g->L[j] = j ? linsolve_new_shared(&g->set[j], g->L[j - 1], e) : linsolve_new(&g->set[j], &g->M, e);
         if (!g->L[j]) return -1;
     }
     return 0;
@@ -160,8 +159,8 @@ void gran_free(Granular *g)
     if (g->bc_rho.fm) bc_free(&g->bc_rho);
     tvd_free(&g->tvd);
     if (g->hy.off) hydro_free(&g->hy);
-    void *arr[] = {g->wall, g->phi, g->cf,  g->pf, g->rho1, g->U1, g->rhoU, g->conv,
-                   g->force, g->crho, g->x, g->uk, g->xb,   g->xb3, g->xbr, g->patch_out};
+    void *arr[] = {g->wall, g->phi, g->pf, g->rho1, g->U1, g->rhoU, g->conv, g->force,
+                   g->crho, g->x,   g->uk, g->xb,   g->xb3, g->xbr,  g->patch_out};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
     memset(g, 0, sizeof *g);
 }
@@ -226,7 +225,7 @@ void gran_flux(Granular *g)
 double gran_courant(Granular *g, double dt, double *mean)
 {
     const FvMesh *f = g->f;
-    double co = fvc_courant(f, g->phi, g->cf, dt, g->x), sum = 0;
+    double co = fvc_courant_uniform(f, g->phi, sqrt(g->pr.RsT), dt, g->x), sum = 0;
     for (int c = 0; c < f->nowned; c++) sum += g->x[c];
     *mean = f->nowned ? sum / f->nowned : 0;
     return co;
@@ -277,16 +276,23 @@ static void explicit_terms(Granular *g, double dt)
     fvc_pressure_force(f, g->pf, g->force);
 }
 
-/* Assembles and solves component k (solver j) into U1. */
+/* Assembles and solves component k (solver j) into U1.  The matrix is
+   the previous component's unless their boundary coefficients differ
+   (slip walls): then only the right-hand side is assembled, and a shared
+   solver keeps its preconditioner (linsolve_solve_tracked). */
 static int solve_component(Granular *g, int j, double dt, Err *e)
 {
     const FvMesh *f = g->f;
     int k = g->axis[j];
     FvMatrix *M = &g->M;
     double t0 = now();
-    fvmatrix_zero(M);
-    fvm_ddt(M, f, g->rho1, dt);
-    fvm_laplacian(&g->op, M, k, g->pr.mu); /* eq. 4.62-4.64 */
+    if (j == 0 || !fvm_same_matrix(&g->op, g->axis[j - 1], k)) {
+        fvmatrix_zero_values(M);
+        fvm_ddt(M, f, g->rho1, dt);
+        fvm_laplacian_matrix(&g->op, M, k, g->pr.mu); /* eq. 4.62-4.64 */
+    }
+    fvmatrix_zero_rhs(M);
+    fvm_laplacian_rhs(&g->op, M, k, g->pr.mu);
     for (int c = 0; c < M->nrows; c++) {
         double V = f->m->cell_vol[c], rho = g->rho->v[c];
         double F = g->gravity == GRAN_WELL_BALANCED ? g->pr.RsT * rho * g->hy.grav[3 * c + k] /* fv/hydro.h */
@@ -296,7 +302,7 @@ static int solve_component(Granular *g, int j, double dt, Err *e)
     component(f, g->U->v, k, g->x);
     double t1 = now();
     g->t_assembly += t1 - t0;
-    int rc = linsolve_solve(g->L[j], g->x, &g->st[j], e);
+    int rc = linsolve_solve_tracked(g->L[j], g->x, &g->st[j], e);
     g->t_solve += now() - t1;
     if (rc) return -1;
     for (int c = 0; c < f->ncells; c++) g->U1[3 * c + k] = g->x[c];

@@ -80,7 +80,7 @@ typedef struct Granular {
     LinSystem *L[3];
     LinStats st[3];        /* of the last step */
     char *wall;            /* nboundary: 1 on an impermeable face */
-    double *phi, *cf;      /* nfaces: flux, sound speed */
+    double *phi;           /* nfaces: flux */
     double *pf;            /* nfaces: face pressure */
     double *rho1, *U1;     /* the new state */
     double *rhoU, *conv, *force;   /* 3 ncells */
