@@ -58,6 +58,7 @@ const DictKey runtime_control_keys[] = {
     {"writeControl", "timeStep", "timeStep | runTime | adjustableRunTime | cpuTime | clockTime"},
     {"writeInterval", "1", "time steps (timeStep) or seconds between writes"},
     {"purgeWrite", "0", "keep only the last N written time directories (0 keeps all)"},
+    {"writeVTK", "yes", "solvers: also write the legacy VTK files writeVTK would (VTK/, .vtk.series) at each write time"},
     {"writeFormat", "ascii", "ascii | binary"},
     {"writePrecision", "6", "significant digits of numbers in ascii files"},
     {"writeCompression", "off", "on | off (also compressed | uncompressed): gzip ascii files"},
@@ -141,7 +142,7 @@ static int parse_control(Control *c, const Dict *d, int need_time, Err *e)
         read_times(c, d, need_time, e) ||
         read_choice(d, "writeControl", wc_names, wc_vals, 0, &c->writeControl, e) ||
         dict_scalar_or(d, "writeInterval", 1, &c->writeInterval, e) ||
-        dict_label_or(d, "purgeWrite", 0, &c->purgeWrite, e) ||
+        dict_label_or(d, "purgeWrite", 0, &c->purgeWrite, e) || dict_switch_or(d, "writeVTK", 1, &c->writeVTK, e) ||
         read_choice(d, "writeFormat", fmt_names, fmt_vals, 0, &c->writeBinary, e) ||
         dict_label_or(d, "writePrecision", 6, &c->writePrecision, e) || read_compression(d, &c->writeCompression, e) ||
         read_choice(d, "timeFormat", tf_names, tf_vals, 0, &c->timeFormat, e) ||

@@ -30,6 +30,7 @@ typedef struct Control {
     int writeControl;      /* WRITE_* */
     double writeInterval;
     int purgeWrite;        /* keep only the last N time dirs (0 = all) */
+    int writeVTK;          /* solvers write VTK/ at each write time (default on) */
     int writeBinary;       /* writeFormat binary */
     int writeCompression;  /* gzip; always 0 with writeBinary (OpenFOAM v1912) */
     int writePrecision;    /* default 6 */

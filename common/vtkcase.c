@@ -12,6 +12,8 @@
 #include "io.h"
 #include "mem.h"
 
+#include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -243,4 +245,227 @@ int vtkcase_field_names(const char *spec, char ***names)
     }
     *names = v;
     return n;
+}
+
+/* ---- a solver's write times: VTK/ kept a mirror of the time directories ---- */
+
+/* The entries of a series file as vtk_write_series writes them: names and
+   times into new arrays; a missing or foreign file gives none. */
+typedef struct Series {
+    char **name;
+    double *time;
+    int n;
+} Series;
+
+static void series_free(Series *s)
+{
+    io_free_list(s->name, s->n);
+    free(s->time);
+    memset(s, 0, sizeof *s);
+}
+
+/* The JSON string at p (after its opening quote) into a new string, *end
+   after the closing quote; NULL when it does not close. */
+static char *json_string(const char *p, const char **end)
+{
+    Buf b;
+    buf_init(&b);
+    for (; *p && *p != '"'; p++) {
+        if (*p == '\\' && p[1]) p++;
+        buf_putc(&b, *p);
+    }
+    if (*p != '"') {
+        buf_free(&b);
+        return NULL;
+    }
+    *end = p + 1;
+    char *s = mem_strdup(b.n ? b.p : "");
+    buf_free(&b);
+    return s;
+}
+
+/* After key ("name" or "time") at p: the position after its colon, or NULL. */
+static const char *json_value(const char *p, const char *key)
+{
+    p = strstr(p, key);
+    if (!p) return NULL;
+    p += strlen(key);
+    while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') p++;
+    if (*p != ':') return NULL;
+    p++;
+    while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') p++;
+    return p;
+}
+
+static void read_series(const char *path, Series *s)
+{
+    memset(s, 0, sizeof *s);
+    Buf b;
+    Err e;
+    buf_init(&b);
+    if (!io_exists(path) || io_read_file(path, &b, NULL, &e)) return;
+    int cap = 16;
+    s->name = MEM_NEW(char *, cap);
+    s->time = MEM_NEW(double, cap);
+    const char *p = b.p;
+    while ((p = json_value(p, "\"name\"")) && *p == '"') {
+        char *name = json_string(p + 1, &p), *end;
+        const char *t = name ? json_value(p, "\"time\"") : NULL;
+        double v = t ? strtod(t, &end) : 0;
+        if (!t || end == t) {
+            free(name);
+            break;
+        }
+        if (s->n == cap) {
+            cap *= 2;
+            s->name = mem_realloc(s->name, (size_t)cap * sizeof *s->name);
+            s->time = mem_realloc(s->time, (size_t)cap * sizeof *s->time);
+        }
+        s->name[s->n] = name;
+        s->time[s->n++] = v;
+        p = end;
+    }
+    buf_free(&b);
+}
+
+/* Does the old series give file name the time value t?  (Its times are
+   written to round-trip, so they compare exactly but for a relative
+   1e-12 of slack.) */
+static int series_has(const Series *s, const char *name, double t)
+{
+    for (int i = 0; i < s->n; i++)
+        if (!strcmp(s->name[i], name)) return fabs(s->time[i] - t) <= 1e-12 * fabs(t);
+    return 0;
+}
+
+/* Is time t of v already on disk as writeVTK would write it: the internal
+   file listed in the old series under its time, and every patch file? */
+static int time_current(const VtkCase *v, int t, const Series *old)
+{
+    char *rel = vtk_file("VTK", v->name, v->index[t]), *path = io_join(v->case_dir, rel);
+    int ok = io_exists(path) && series_has(old, strrchr(rel, '/') + 1, v->times.all[t].value);
+    free(rel);
+    free(path);
+    for (int p = 0; p < v->m->npatches && ok; p++) {
+        if (!patch_written(v, p)) continue;
+        char *dir = io_join("VTK", v->m->patches[p].name);
+        rel = vtk_file(dir, v->m->patches[p].name, v->index[t]);
+        path = io_join(v->case_dir, rel);
+        ok = io_exists(path);
+        free(dir);
+        free(rel);
+        free(path);
+    }
+    return ok;
+}
+
+/* Reads the fields of the t-th time and writes its files. */
+static int convert_time(const VtkCase *v, int t, Buf *scratch, Err *e)
+{
+    Field *f;
+    int nf = vtkcase_read_fields(v, t, NULL, 0, &f, scratch, e);
+    if (nf < 0) return -1;
+    int rc = vtkcase_write_time(v, t, f, nf, scratch, e);
+    field_free_all(f, nf);
+    return rc;
+}
+
+/* Is name "<base>_<digits>.vtk"?  Its number into *index. */
+static int numbered_file(const char *name, const char *base, long *index)
+{
+    size_t l = strlen(base);
+    if (strncmp(name, base, l) || name[l] != '_') return 0;
+    const char *d = name + l + 1;
+    size_t k = strspn(d, "0123456789");
+    if (k == 0 || k > 18 || strcmp(d + k, ".vtk")) return 0;
+    *index = strtol(d, NULL, 10);
+    return 1;
+}
+
+/* Removes <dir>/<base>_<index>.vtk files whose index no time of v has. */
+static int sweep_dir(const VtkCase *v, const char *dir, const char *base, int *nremoved, Err *e)
+{
+    char *adir = io_join(v->case_dir, dir), **names;
+    int n = io_is_dir(adir) ? io_list_dir(adir, &names, e) : 0, rc = n < 0 ? -1 : 0;
+    for (int i = 0; i < n && rc == 0; i++) {
+        long idx;
+        if (!numbered_file(names[i], base, &idx)) continue;
+        int used = 0;
+        for (int t = 0; t < v->times.nall && !used; t++) used = v->index[t] == idx;
+        if (used) continue;
+        char *path = io_join(adir, names[i]);
+        if (remove(path)) rc = err_set(e, path, 0, "cannot remove: %s", strerror(errno));
+        else (*nremoved)++;
+        free(path);
+    }
+    if (n > 0) io_free_list(names, n);
+    free(adir);
+    return rc;
+}
+
+static int sweep(const VtkCase *v, int *nremoved, Err *e)
+{
+    int rc = sweep_dir(v, "VTK", v->name, nremoved, e);
+    for (int p = 0; p < v->m->npatches && rc == 0; p++) {
+        if (!patch_written(v, p)) continue;
+        char *dir = io_join("VTK", v->m->patches[p].name);
+        rc = sweep_dir(v, dir, v->m->patches[p].name, nremoved, e);
+        free(dir);
+    }
+    return rc;
+}
+
+/* Converts fresh and every time not current; the count or -1. */
+static int convert_stale(const VtkCase *v, const char *fresh, Buf *scratch, Err *e)
+{
+    char *spath = io_join(v->case_dir, "VTK"), *sname = mem_alloc(strlen(v->name) + 16);
+    sprintf(sname, "%s.vtk.series", v->name);
+    char *series = io_join(spath, sname);
+    Series old;
+    read_series(series, &old);
+    int n = 0;
+    for (int t = 0; t < v->times.nall && n >= 0; t++) {
+        int is_fresh = fresh && !strcmp(v->times.all[t].name, fresh);
+        if (!is_fresh && time_current(v, t, &old)) continue;
+        n = convert_time(v, t, scratch, e) ? -1 : n + 1;
+    }
+    series_free(&old);
+    free(series);
+    free(sname);
+    free(spath);
+    return n;
+}
+
+/* One line for the solver's log: the file of fresh, what else changed. */
+static void put_summary(const VtkCase *v, const char *fresh, int nconv, int nremoved, Buf *log)
+{
+    int t = 0, nother = nconv;
+    while (fresh && t < v->times.nall && strcmp(v->times.all[t].name, fresh)) t++;
+    buf_puts(log, "VTK:");
+    if (fresh && t < v->times.nall) {
+        char *rel = vtk_file("VTK", v->name, v->index[t]);
+        buf_printf(log, " %s", rel);
+        free(rel);
+        nother--;
+    }
+    if (nother > 0)
+        buf_printf(log, "%s %d other time%s (missing or renumbered)", nother < nconv ? " and" : "", nother,
+                   nother > 1 ? "s" : "");
+    if (nremoved > 0)
+        buf_printf(log, "; removed %d stale file%s (times gone or renumbered)", nremoved, nremoved > 1 ? "s" : "");
+    buf_printf(log, "; VTK/%s.vtk.series: %d time%s\n", v->name, v->times.nall, v->times.nall > 1 ? "s" : "");
+}
+
+int vtkcase_sync(const char *case_dir, const Mesh *m, const char *fresh, Buf *log, Err *e)
+{
+    VtkCase v;
+    Buf scratch;
+    buf_init(&scratch);
+    int rc = vtkcase_open(&v, case_dir, m, NULL, 0, 0, e) || vtkcase_mkdir(&v, 0, e) ? -1 : 0;
+    int nconv = rc ? -1 : convert_stale(&v, fresh, &scratch, e), nremoved = 0;
+    rc = nconv < 0 || sweep(&v, &nremoved, e) || vtkcase_write_series(&v, &scratch, e) ? -1 : 0;
+    if (rc == 0) put_summary(&v, fresh, nconv, nremoved, log);
+    buf_free(&scratch);
+    vtkcase_free(&v);
+    return rc ? -1 : nconv;
 }

@@ -18,6 +18,19 @@
 ** only the times converted by this run, so converting the latest time
 ** after a full conversion keeps the whole series.  The file writing is
 ** vtk.h's; progress text goes into a Buf: the library never prints.
+**
+** A solver keeps VTK/ a mirror of its time directories (vtkcase_sync):
+** after each write time (and purgeWrite) VTK/ holds exactly the files a
+** full writeVTK conversion with default options would write, without
+** converting everything again.  The old series file is the record of what
+** is on disk: a time whose internal file exists under the name the series
+** gives its time, and whose patch files exist, is current; every other
+** time, and the one just written, is (re)converted from its directory, so
+** the VTK values are the time directory's digits, as writeVTK's are.  A
+** restart that changes the step indices (names) or makes them collide
+** (every time then takes its position) is caught by the same test.
+** Numbered files that no time on disk names any more (purgeWrite, or a
+** renumbering) are removed, so purged times leave the series and the disk.
 */
 #ifndef KIESEL_VTKCASE_H
 #define KIESEL_VTKCASE_H
@@ -60,6 +73,15 @@ int vtkcase_read_fields(const VtkCase *v, int i, const char *const *want, int nw
 int vtkcase_write_time(const VtkCase *v, int i, const Field *f, int nf, Buf *log, Err *e);
 /* Writes the series files of the internal mesh and of every patch. */
 int vtkcase_write_series(const VtkCase *v, Buf *log, Err *e);
+
+/* A solver's write time: VTK/ brought to the state a full writeVTK
+   conversion of the case would leave (see the top): fresh, the name of
+   the time directory just written (or NULL), is always converted, the
+   other times only when not current; stale numbered files are removed;
+   the series files rewritten.  Appends one line to log (the file of
+   fresh, other times converted, files removed, the series' length).
+   Returns the count of times converted or -1. */
+int vtkcase_sync(const char *case_dir, const Mesh *m, const char *fresh, Buf *log, Err *e);
 
 /* Field names of a -fields option, "(p U)" or "p U", without repeats, into
    a new array (io_free_list); returns the count. */

@@ -371,35 +371,41 @@ void bc_free(Bc *bc)
 
 /* ---- boundary values ---- */
 
-/* Component k of the value of boundary face b of patch bp. */
-static double face_value(const Bc *bc, const BcPatch *bp, int b, const double *v, int k)
+/* Component k of the values of patch bp's faces into xb[b * stride], b
+   the boundary index of each face: one loop per patch and kind, since
+   these run over every boundary face several times a step (in 2-D the
+   empty faces are two per cell). */
+static void patch_values(const Bc *bc, const BcPatch *bp, const double *v, int k, double *xb, int stride)
 {
     const FvMesh *fm = bc->fm;
-    int w = bc->width, f = fm->ninternal + b;
-    const double *own = v + (size_t)fm->m->owner[f] * w;
-    if (bp->value) return bp->value[(f - bp->start) * w + k];
-    if (bp->kind == BC_CYCLIC) {
-        double wn = bc->nbr_w[b];
-        return (1 - wn) * own[k] + wn * v[(size_t)bc->nbr[b] * w + k];
+    const int *owner = fm->m->owner + fm->ninternal;
+    int w = bc->width, b0 = bp->start - fm->ninternal;
+    if (bp->value) {
+        for (int j = 0; j < bp->size; j++) xb[(size_t)(b0 + j) * stride] = bp->value[j * w + k];
+    } else if (bp->kind == BC_CYCLIC) {
+        for (int b = b0; b < b0 + bp->size; b++) {
+            double wn = bc->nbr_w[b];
+            xb[(size_t)b * stride] = (1 - wn) * v[(size_t)owner[b] * w + k] + wn * v[(size_t)bc->nbr[b] * w + k];
+        }
+    } else if ((bp->kind == BC_SLIP || bp->kind == BC_SYMMETRY_PLANE) && w == 3) {
+        for (int b = b0; b < b0 + bp->size; b++) {
+            const double *n = bc->n + 3 * b, *own = v + (size_t)owner[b] * 3;
+            xb[(size_t)b * stride] = own[k] - geom_dot(n, own) * n[k];
+        }
+    } else {
+        for (int b = b0; b < b0 + bp->size; b++) xb[(size_t)b * stride] = v[(size_t)owner[b] * w + k];
     }
-    if ((bp->kind == BC_SLIP || bp->kind == BC_SYMMETRY_PLANE) && w == 3) {
-        const double *n = bc->n + 3 * b;
-        return own[k] - geom_dot(n, own) * n[k];
-    }
-    return own[k];
 }
 
 void bc_values_component(const Bc *bc, const double *v, int k, double *xb)
 {
-    for (int b = 0; b < bc->nboundary; b++)
-        xb[b] = face_value(bc, &bc->patch[bc->fm->face_patch[b]], b, v, k);
+    for (int p = 0; p < bc->npatches; p++) patch_values(bc, &bc->patch[p], v, k, xb, 1);
 }
 
 void bc_values(const Bc *bc, const double *v, double *xb)
 {
-    for (int b = 0; b < bc->nboundary; b++)
-        for (int k = 0; k < bc->width; k++)
-            xb[b * bc->width + k] = face_value(bc, &bc->patch[bc->fm->face_patch[b]], b, v, k);
+    for (int p = 0; p < bc->npatches; p++)
+        for (int k = 0; k < bc->width; k++) patch_values(bc, &bc->patch[p], v, k, xb + k, bc->width);
 }
 
 void bc_states(const Bc *bc, const double *v, double *xb)

@@ -130,6 +130,19 @@ void bc_values(const Bc *bc, const double *v, double *xb);
    periodic neighbour's own value xi_N. */
 void bc_states(const Bc *bc, const double *v, double *xb);
 
+/* Does a patch whose U is of kind k carry mass: fixedValue, zeroGradient
+   or calculated (not a wall, not empty, not cyclic)? */
+int bc_kind_open(BcKind k);
+
+/* The open patches of an isothermal compressible model (bc_open.c): at
+   each, exactly one of rho and U fixed (inflow: fixedValue U,
+   zeroGradient rho; outflow: fixedValue rho, zeroGradient U), both fixed
+   only where every face is a supersonic inflow (u.n <= -c, c the speed of
+   sound, from U's fixed values).  Otherwise an error at the file and line
+   of rho's patch entry (frho, fU: the fields the conditions came from)
+   that says which is wrong and what to use. */
+int bc_check_open(const Bc *rho, const Bc *U, const Field *frho, const Field *fU, double c, Err *e);
+
 /* Component k of the boundary values (stride 1, nboundary numbers), the
    form stencil_apply takes. */
 void bc_values_component(const Bc *bc, const double *v, int k, double *xb);

@@ -13,8 +13,10 @@
 
 #include "mem.h"
 
-void fvc_div_upwind(const FvMesh *f, const double *phi, const double *xc, const double *xb, int ncomp,
-                    double *out)
+/* fvc_div_upwind's loop, inlined with ncomp a constant where it is 1 or 3
+   so that the component loops unroll. */
+static inline void div_upwind(const FvMesh *f, const double *phi, const double *xc, const double *xb, int ncomp,
+                              double *out)
 {
     const Mesh *m = f->m;
     memset(out, 0, sizeof(double) * (size_t)ncomp * (size_t)f->ncells);
@@ -35,6 +37,14 @@ void fvc_div_upwind(const FvMesh *f, const double *phi, const double *xc, const 
     }
 }
 
+void fvc_div_upwind(const FvMesh *f, const double *phi, const double *xc, const double *xb, int ncomp,
+                    double *out)
+{
+    if (ncomp == 1) div_upwind(f, phi, xc, xb, 1, out);
+    else if (ncomp == 3) div_upwind(f, phi, xc, xb, 3, out);
+    else div_upwind(f, phi, xc, xb, ncomp, out);
+}
+
 void fvc_pressure_force(const FvMesh *f, const double *pf, double *out)
 {
     const Mesh *m = f->m;
@@ -51,14 +61,15 @@ void fvc_pressure_force(const FvMesh *f, const double *pf, double *out)
     }
 }
 
-double fvc_courant(const FvMesh *f, const double *phi, const double *cf, double dt, double *co)
+/* fvc_courant with c_f = cf[f], or c0 where cf is NULL. */
+static double courant(const FvMesh *f, const double *phi, const double *cf, double c0, double dt, double *co)
 {
     const Mesh *m = f->m;
     double *sum = co ? co : mem_alloc(sizeof(double) * ((size_t)f->ncells + 1)), worst = 0;
     memset(sum, 0, sizeof(double) * (size_t)f->ncells);
     for (int i = 0; i < f->nfaces; i++) {
         if (f->empty_face[i]) continue;
-        double s = fabs(phi[i]) + (cf ? cf[i] * f->mag_sf[i] : 0);
+        double s = fabs(phi[i]) + (cf ? cf[i] : c0) * f->mag_sf[i];
         sum[m->owner[i]] += s;
         if (i < f->ninternal) sum[m->neighbour[i]] += s;
     }
@@ -68,6 +79,16 @@ double fvc_courant(const FvMesh *f, const double *phi, const double *cf, double 
     }
     if (!co) free(sum);
     return worst;
+}
+
+double fvc_courant(const FvMesh *f, const double *phi, const double *cf, double dt, double *co)
+{
+    return courant(f, phi, cf, 0, dt, co);
+}
+
+double fvc_courant_uniform(const FvMesh *f, const double *phi, double c, double dt, double *co)
+{
+    return courant(f, phi, NULL, c, dt, co);
 }
 
 double fvc_total(const FvMesh *f, const double *x)

@@ -42,6 +42,8 @@ void fvc_pressure_force(const FvMesh *f, const double *pf, double *out);
    OpenFOAM's CourantNo with the acoustic term added.  Returns the
    largest; co (may be NULL) receives each cell's. */
 double fvc_courant(const FvMesh *f, const double *phi, const double *cf, double dt, double *co);
+/* The same with one signal speed c on every face (no array of them). */
+double fvc_courant_uniform(const FvMesh *f, const double *phi, double c, double dt, double *co);
 
 /* Sum of x V over the owned cells (total mass for x = rho). */
 double fvc_total(const FvMesh *f, const double *x);

@@ -7,8 +7,15 @@
 ** weight to the right-hand side (bc.h), so the boundary condition is
 ** applied wherever a stencil reaches the boundary, not only at the face
 ** itself.  Each entry's positions in the owner's and the neighbour's rows
-** are kept in two arrays parallel to the stencil's, so the assembly of a
-** time step is one pass over the stencil entries.
+** are kept (pos_own, pos_nbr), so the assembly of a time step is one pass
+** over the stencil entries; the faces between whole Cartesian cells, whose
+** rows are the two cells themselves with weight 1 (two_point), keep no
+** positions: theirs are the diagonals and the matrix's face positions.
+** That keeps 8 bytes per PLUS and MINUS entry off most faces of a cut
+** grid (97 bytes a cell on a 3-D block grid).  One body, face_terms,
+** adds a face's terms for the three passes (both parts, the matrix alone,
+** the right-hand side alone): inlined with `what` a constant, each pass
+** does only its part's work, in the order of the others.
 */
 #include "fvm.h"
 
@@ -53,22 +60,82 @@ static double face_dist(const FvMesh *f, int i)
     return f->h[i] + f->ht[i];
 }
 
-/* Positions of the PLUS and MINUS rows' entries of face i; returns the
-   number of missing ones. */
+/* Is face i's difference the plain two-point one: an internal face
+   whose PLUS row is the neighbour alone and MINUS row the owner alone,
+   both weight 1, and both rows ours?  (Eq. 4.61's faces between whole
+   Cartesian cells, and every face of the scheme none.)  Its entries are
+   the diagonals and the matrix's face positions. */
+static int two_point(const FvMatrix *M, const FvMesh *f, const Stencil *s, int i)
+{
+    if (i >= f->ninternal || f->empty_face[i]) return 0;
+    int o = f->m->owner[i], n = f->m->neighbour[i], rp = interp_row(i, INTERP_PLUS), rm = interp_row(i, INTERP_MINUS);
+    return o < M->nrows && n < M->nrows && M->face_pos[2 * i] >= 0 && M->face_pos[2 * i + 1] >= 0 &&
+           s->off[rp + 1] - s->off[rp] == 1 && s->src[s->off[rp]] == n && s->w[s->off[rp]] == 1.0 &&
+           s->off[rm + 1] - s->off[rm] == 1 && s->src[s->off[rm]] == o && s->w[s->off[rm]] == 1.0;
+}
+
+/* Entries of face i's PLUS and MINUS rows. */
+static int face_entries(const Stencil *s, int i)
+{
+    return s->off[interp_row(i, INTERP_MINUS) + 1] - s->off[interp_row(i, INTERP_PLUS)];
+}
+
+/* Positions of the PLUS and MINUS rows' entries of face i, from
+   pos_off[i] on; returns the number of missing ones. */
 static int face_positions(Fvm *d, const FvMatrix *M, int i)
 {
     const FvMesh *f = d->f;
     const Stencil *s = &d->ip->face;
-    int o = f->m->owner[i], n = face_nbr(f, i), missing = 0;
-    for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++) {
-        int r = interp_row(i, k);
-        for (int j = s->off[r]; j < s->off[r + 1]; j++) {
-            d->pos_own[j] = source_pos(M, f, o, s->src[j]);
-            d->pos_nbr[j] = source_pos(M, f, n, s->src[j]);
-            missing += (o < M->nrows && d->pos_own[j] < 0) + (n >= 0 && n < M->nrows && d->pos_nbr[j] < 0);
-        }
+    int o = f->m->owner[i], n = face_nbr(f, i), missing = 0, q = d->pos_off[i];
+    for (int j = s->off[interp_row(i, INTERP_PLUS)]; j < s->off[interp_row(i, INTERP_MINUS) + 1]; j++, q++) {
+        d->pos_own[q] = source_pos(M, f, o, s->src[j]);
+        d->pos_nbr[q] = source_pos(M, f, n, s->src[j]);
+        missing += (o < M->nrows && d->pos_own[q] < 0) + (n >= 0 && n < M->nrows && d->pos_nbr[q] < 0);
     }
     return missing;
+}
+
+/* Which faces are two-point, and where the others' positions go. */
+static void face_layout(Fvm *d, const FvMatrix *M)
+{
+    const FvMesh *f = d->f;
+    const Stencil *s = &d->ip->face;
+    d->two_point = mem_calloc((size_t)f->nfaces + 1, 1);
+    d->pos_off = mem_alloc(sizeof(int) * ((size_t)f->nfaces + 1));
+    int q = 0;
+    for (int i = 0; i < f->nfaces; i++) {
+        d->pos_off[i] = q;
+        d->two_point[i] = (char)two_point(M, f, s, i);
+        if (!f->empty_face[i] && !d->two_point[i]) q += face_entries(s, i);
+    }
+    d->pos_off[f->nfaces] = q;
+    d->pos_own = mem_alloc(sizeof(int) * ((size_t)q + 1));
+    d->pos_nbr = mem_alloc(sizeof(int) * ((size_t)q + 1));
+}
+
+/* Has face i right-hand-side terms: a Neumann face, or a PLUS or MINUS
+   row with a boundary source? */
+static int face_has_rhs(const Fvm *d, int i)
+{
+    const FvMesh *f = d->f;
+    const Stencil *s = &d->ip->face;
+    if (i >= f->ninternal && d->bc->fixed_grad[i - f->ninternal]) return 1;
+    for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++) {
+        int r = interp_row(i, k);
+        for (int j = s->off[r]; j < s->off[r + 1]; j++)
+            if (s->src[j] >= f->ncells) return 1;
+    }
+    return 0;
+}
+
+static void list_rhs_faces(Fvm *d)
+{
+    const FvMesh *f = d->f;
+    int n = 0;
+    for (int i = 0; i < f->nfaces; i++) n += !f->empty_face[i] && face_has_rhs(d, i);
+    d->rhs_face = mem_alloc(sizeof(int) * ((size_t)n + 1));
+    for (int i = 0; i < f->nfaces; i++)
+        if (!f->empty_face[i] && face_has_rhs(d, i)) d->rhs_face[d->nrhs_face++] = i;
 }
 
 int fvm_init(Fvm *d, const FvMatrix *M, const FvMesh *f, const Interp *ip, const Bc *bc, Err *e)
@@ -77,20 +144,19 @@ int fvm_init(Fvm *d, const FvMatrix *M, const FvMesh *f, const Interp *ip, const
     d->f = f;
     d->ip = ip;
     d->bc = bc;
-    size_t nent = (size_t)ip->face.off[ip->face.nrows] + 1;
     d->dist = mem_alloc(sizeof(double) * ((size_t)f->nfaces + 1));
-    d->pos_own = mem_alloc(sizeof(int) * nent);
-    d->pos_nbr = mem_alloc(sizeof(int) * nent);
+    face_layout(d, M);
     int missing = 0;
     for (int i = 0; i < f->nfaces; i++) {
         d->dist[i] = face_dist(f, i);
-        if (!f->empty_face[i]) missing += face_positions(d, M, i);
+        if (!f->empty_face[i] && !d->two_point[i]) missing += face_positions(d, M, i);
     }
     if (missing) {
         fvm_free(d);
         return err_set(e, NULL, 0, "fvm_init: %d entries of the diffusion operator are not in the matrix pattern",
                        missing);
     }
+    list_rhs_faces(d);
     return 0;
 }
 
@@ -99,62 +165,120 @@ void fvm_free(Fvm *d)
     free(d->dist);
     free(d->pos_own);
     free(d->pos_nbr);
+    free(d->pos_off);
+    free(d->two_point);
+    free(d->rhs_face);
     memset(d, 0, sizeof *d);
 }
 
-/* Adds c * (row r's value) to the matrix row whose positions are pos
-   (boundary sources through the boundary condition's a and b). */
-static void add_row(FvMatrix *M, const Fvm *d, const int *pos, int row, int r, int k, double c)
+/* What an assembly pass adds: matrix entries, right-hand side, or both. */
+enum { FVM_MATRIX = 1, FVM_RHS = 2 };
+
+/* Adds c * (row r's value) to matrix row `row`, pos the positions of
+   r's entries in it (boundary sources through the boundary condition's a
+   and b): the parts `what` asks for. */
+static inline void add_row(FvMatrix *M, const Fvm *d, const int *pos, int row, int r, int k, double c, int what)
 {
     const Stencil *s = &d->ip->face;
     const Bc *bc = d->bc;
-    int nc = d->f->ncells;
-    for (int j = s->off[r]; j < s->off[r + 1]; j++) {
+    int nc = d->f->ncells, j0 = s->off[r];
+    for (int j = j0; j < s->off[r + 1]; j++) {
         double w = c * s->w[j];
         int src = s->src[j];
         if (src < nc) {
-            M->val[pos[j]] += w;
+            if (what & FVM_MATRIX) M->val[pos[j - j0]] += w;
             continue;
         }
         size_t bk = (size_t)(src - nc) * (size_t)bc->width + (size_t)k;
-        M->val[pos[j]] += w * bc->a[bk];
-        M->rhs[row] -= w * bc->b[bk];
+        if (what & FVM_MATRIX) M->val[pos[j - j0]] += w * bc->a[bk];
+        if (what & FVM_RHS) M->rhs[row] -= w * bc->b[bk];
     }
 }
 
+/* The number of entries of face i's PLUS row (its MINUS row's positions
+   follow them). */
+static inline int plus_len(const Fvm *d, int i)
+{
+    const Stencil *s = &d->ip->face;
+    return s->off[interp_row(i, INTERP_PLUS) + 1] - s->off[interp_row(i, INTERP_PLUS)];
+}
+
 /* A Neumann boundary face: F = G |S| (ga u(MINUS) + gb). */
-static void neumann_face(const Fvm *d, FvMatrix *M, int i, int k, double gamma)
+static inline void neumann_face(const Fvm *d, FvMatrix *M, int i, int k, double gamma, int what)
 {
     const FvMesh *f = d->f;
     const Bc *bc = d->bc;
     int b = i - f->ninternal, o = f->m->owner[i];
     size_t bk = (size_t)b * (size_t)bc->width + (size_t)k;
     double G = gamma * f->mag_sf[i];
-    M->rhs[o] += G * bc->gb[bk];
-    if (bc->ga[bk] != 0) add_row(M, d, d->pos_own, o, interp_row(i, INTERP_MINUS), k, -G * bc->ga[bk]);
+    if (what & FVM_RHS) M->rhs[o] += G * bc->gb[bk];
+    if (bc->ga[bk] != 0)
+        add_row(M, d, d->pos_own + d->pos_off[i] + plus_len(d, i), o, interp_row(i, INTERP_MINUS), k, -G * bc->ga[bk],
+                what);
+}
+
+/* Face i's terms (not an empty face). */
+static inline void face_terms(const Fvm *d, FvMatrix *M, int i, int k, double gamma, int what)
+{
+    const FvMesh *f = d->f;
+    int o = f->m->owner[i], n = face_nbr(f, i);
+    if (i >= f->ninternal && d->bc->fixed_grad[i - f->ninternal]) {
+        if (o < M->nrows) neumann_face(d, M, i, k, gamma, what);
+        return;
+    }
+    double D = gamma * f->mag_sf[i] / d->dist[i];
+    if (d->two_point[i]) { /* the general case below with weights 1 */
+        if (what & FVM_MATRIX) {
+            M->val[M->face_pos[2 * i]] += -D;
+            M->val[M->diag[o]] += D;
+            M->val[M->diag[n]] += D;
+            M->val[M->face_pos[2 * i + 1]] += -D;
+        }
+        return;
+    }
+    int rp = interp_row(i, INTERP_PLUS), rm = interp_row(i, INTERP_MINUS), np = plus_len(d, i);
+    const int *po = d->pos_own + d->pos_off[i], *pn = d->pos_nbr + d->pos_off[i];
+    if (o < M->nrows) { /* -F in the owner's row */
+        add_row(M, d, po, o, rp, k, -D, what);
+        add_row(M, d, po + np, o, rm, k, D, what);
+    }
+    if (n >= 0 && n < M->nrows) { /* +F in the neighbour's */
+        add_row(M, d, pn, n, rp, k, D, what);
+        add_row(M, d, pn + np, n, rm, k, -D, what);
+    }
 }
 
 void fvm_laplacian(const Fvm *d, FvMatrix *M, int k, double gamma)
 {
+    fvm_laplacian_matrix(d, M, k, gamma);
+    fvm_laplacian_rhs(d, M, k, gamma);
+}
+
+void fvm_laplacian_matrix(const Fvm *d, FvMatrix *M, int k, double gamma)
+{
     const FvMesh *f = d->f;
-    for (int i = 0; i < f->nfaces; i++) {
-        if (f->empty_face[i]) continue;
-        int o = f->m->owner[i], n = face_nbr(f, i);
-        if (i >= f->ninternal && d->bc->fixed_grad[i - f->ninternal]) {
-            if (o < M->nrows) neumann_face(d, M, i, k, gamma);
-            continue;
-        }
-        double D = gamma * f->mag_sf[i] / d->dist[i];
-        int rp = interp_row(i, INTERP_PLUS), rm = interp_row(i, INTERP_MINUS);
-        if (o < M->nrows) { /* -F in the owner's row */
-            add_row(M, d, d->pos_own, o, rp, k, -D);
-            add_row(M, d, d->pos_own, o, rm, k, D);
-        }
-        if (n >= 0 && n < M->nrows) { /* +F in the neighbour's */
-            add_row(M, d, d->pos_nbr, n, rp, k, D);
-            add_row(M, d, d->pos_nbr, n, rm, k, -D);
-        }
+    for (int i = 0; i < f->nfaces; i++)
+        if (!f->empty_face[i]) face_terms(d, M, i, k, gamma, FVM_MATRIX);
+}
+
+void fvm_laplacian_rhs(const Fvm *d, FvMatrix *M, int k, double gamma)
+{
+    for (int j = 0; j < d->nrhs_face; j++) face_terms(d, M, d->rhs_face[j], k, gamma, FVM_RHS);
+}
+
+int fvm_same_matrix(const Fvm *d, int k1, int k2)
+{
+    const Bc *bc = d->bc;
+    size_t w = (size_t)bc->width;
+    for (int p = 0; p < bc->npatches; p++) {
+        const BcPatch *bp = &bc->patch[p];
+        if (bp->kind == BC_EMPTY) continue; /* never assembled, never a source */
+        for (int b = bp->start - d->f->ninternal; b < bp->start - d->f->ninternal + bp->size; b++)
+            if (bc->a[b * w + (size_t)k1] != bc->a[b * w + (size_t)k2] ||
+                bc->ga[b * w + (size_t)k1] != bc->ga[b * w + (size_t)k2])
+                return 0;
     }
+    return 1;
 }
 
 /* Value of row r on component k of u (boundary sources: a u_owner + b). */

@@ -29,7 +29,20 @@
 ** The pattern (fvm_pattern) couples every cell with the sources of its
 ** faces' PLUS and MINUS rows (across the period for cyclic faces); the positions
 ** of every source in both rows (fvm_init) are found once and kept, so an
-** assembly per time step adds by position without a search.
+** assembly per time step adds by position without a search (a face whose
+** rows are its two cells with weight 1 keeps none: the diagonals and
+** FvMatrix.face_pos are its positions).
+**
+** The matrix values depend on the boundary conditions only through a and
+** ga (bc.h), which bc_update never changes, the right-hand side through b
+** and gb; so the values and the right-hand side are assembled apart
+** (fvm_laplacian_matrix, fvm_laplacian_rhs), and the components of a
+** vector whose a and ga agree (everywhere but on slip walls) share one
+** matrix (fvm_same_matrix).  The right-hand side touches only the faces
+** whose PLUS or MINUS rows reach a boundary source, and the Neumann faces:
+** fvm_init lists them (rhs_face), so a component's right-hand side costs
+** the boundary, not the grid.  Each of the three adds its terms in the
+** order fvm_laplacian always did, so the sums are the same to the bit.
 */
 #ifndef KIESEL_FVM_H
 #define KIESEL_FVM_H
@@ -45,10 +58,18 @@ typedef struct Fvm {
     const Interp *ip;
     const Bc *bc;
     double *dist;   /* nfaces: the distance dividing PLUS - MINUS */
-    int *pos_own;   /* per stencil entry of ip->face: position in the row of
-                       its face's owner (a boundary source: of the source
-                       face's owner), -1 when that row is not ours */
+    char *two_point;  /* nfaces: PLUS the neighbour, MINUS the owner, weights
+                         1 (faces between whole Cartesian cells): the
+                         entries are diag and FvMatrix.face_pos */
+    int *pos_off;   /* nfaces + 1: the other faces' PLUS then MINUS
+                       entries have their positions at pos_own[pos_off[i]
+                       ...], pos_nbr[...] */
+    int *pos_own;   /* position of an entry in the row of its face's owner
+                       (a boundary source: of the source face's owner), -1
+                       when that row is not ours */
     int *pos_nbr;   /* ... in the row of its face's neighbour */
+    int *rhs_face;  /* the faces with right-hand-side terms, ascending */
+    int nrhs_face;
 } Fvm;
 
 /* Adds to p the couplings of the diffusion operator on f with the face
@@ -64,6 +85,13 @@ void fvm_free(Fvm *d);
    coefficients bc_update has refreshed) to M: matrix entries and the
    right-hand side. */
 void fvm_laplacian(const Fvm *d, FvMatrix *M, int k, double gamma);
+/* The same in two parts: the matrix entries alone, the right-hand side
+   alone (fvm_laplacian is the two). */
+void fvm_laplacian_matrix(const Fvm *d, FvMatrix *M, int k, double gamma);
+void fvm_laplacian_rhs(const Fvm *d, FvMatrix *M, int k, double gamma);
+/* Do components k1 and k2 of bc's field have the same matrix entries
+   (the same a and ga on every boundary face)? */
+int fvm_same_matrix(const Fvm *d, int k1, int k2);
 
 /* The face fluxes F_f = Gamma |S_f| du/dn (out of the owner) of component
    k of the cell values u (ncells * width, interleaved) with their

@@ -27,6 +27,12 @@
 ** Building: fvpattern_init, then fvpattern_couple / fvpattern_couple_stencil
 ** for the extra entries, then fvmatrix_init (which consumes the pattern).
 ** Per time step: fvmatrix_zero, then add to val[] and rhs[] by position.
+** A system solved several times with the same values and new right-hand
+** sides (the velocity components of eq. 4.66 without slip walls) zeroes
+** and refills only the right-hand side (fvmatrix_zero_rhs) between the
+** solves.  state counts the changes of the values (fvmatrix_zero and
+** fvmatrix_zero_values bump it): a solver that follows it
+** (linsolve_solve_tracked) rebuilds its preconditioner only when it moved.
 **
 ** The arrays are the layout PETSc's MatCreateSeqAIJWithArrays takes
 ** (linsolve.h hands them over without copying), so off and col are int
@@ -58,6 +64,7 @@ typedef struct FvMatrix {
                           halo cell */
     double *val;       /* nnz */
     double *rhs;       /* nrows */
+    unsigned long state;  /* bumped whenever val is zeroed for new values */
 } FvMatrix;
 
 void fvpattern_init(FvPattern *p, const FvMesh *f);
@@ -76,6 +83,9 @@ void fvmatrix_free(FvMatrix *M);
 
 /* Zeroes the values and the right-hand side; the pattern stays. */
 void fvmatrix_zero(FvMatrix *M);
+/* Zeroes the values alone (state moves on), or the right-hand side alone. */
+void fvmatrix_zero_values(FvMatrix *M);
+void fvmatrix_zero_rhs(FvMatrix *M);
 
 /* Position of (row, col), or -1 when it is not in the pattern. */
 int fvmatrix_pos(const FvMatrix *M, int row, int col);

@@ -152,17 +152,16 @@ int fvmesh_init(FvMesh *f, Mesh *m, Err *e)
     f->ninternal = m->ninternal;
     f->nboundary = m->nfaces - m->ninternal;
     f->empty_axis = mesh_empty_axis(m);
-    size_t nf = (size_t)f->nfaces + 1, nc = (size_t)f->ncells + 1;
+    size_t nf = (size_t)f->nfaces + 1;
     f->mag_sf = mem_alloc(nf * sizeof(double));
     f->nf = mem_alloc(3 * nf * sizeof(double));
-    f->node = mem_alloc(3 * nc * sizeof(double));
+    f->node = m->cell_seed ? m->cell_seed : m->cell_centre; /* mesh_cell_node's, not a copy */
     f->h = mem_alloc(nf * sizeof(double));
     f->ht = mem_alloc(nf * sizeof(double));
     f->face_patch = mem_alloc(((size_t)f->nboundary + 1) * sizeof(int));
     f->empty_face = mem_calloc(nf, 1);
     f->cartesian_face = mem_calloc(nf, 1);
     f->cyc_face = mem_alloc(((size_t)f->nboundary + 1) * sizeof(int));
-    for (int c = 0; c < f->ncells; c++) memcpy(f->node + 3 * c, mesh_cell_node(m, c), 3 * sizeof(double));
     boundary_info(f);
     cyclic_pairs(f);
     cartesian_info(f);
@@ -177,7 +176,6 @@ void fvmesh_free(FvMesh *f)
 {
     free(f->mag_sf);
     free(f->nf);
-    free(f->node);
     free(f->h);
     free(f->ht);
     free(f->face_patch);

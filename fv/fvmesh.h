@@ -42,7 +42,8 @@ typedef struct FvMesh {
     int empty_axis;       /* 0..2 for a 2-D grid (empty front and back), else -1 */
     double *mag_sf;       /* nfaces: |S_f| */
     double *nf;           /* 3 nfaces: unit normal, out of the owner */
-    double *node;         /* 3 ncells: the cell's node (seed or centroid) */
+    const double *node;   /* 3 ncells: the cell's node (seed or centroid):
+                             the Mesh's cell_seed or cell_centre itself */
     double *h, *ht;       /* nfaces: h_f and ht_f of eq. 4.62-4.63 */
     int *face_patch;      /* nboundary: patch of boundary face ninternal + i */
     char *empty_face;     /* nfaces: 1 on faces of empty patches (no flux) */

@@ -365,14 +365,6 @@ static void nearest_cell(Interp *ip, const double x[3], Stencil *s)
     stencil_add(s, g.nearest, 1.0);
 }
 
-int interp_point(Interp *ip, const double x[3], int need, Stencil *s)
-{
-    if (ip->o.method == INTERP_MULTILINEAR) interp_multilinear(ip, x, s);
-    else if (ip->o.method == INTERP_NONE) nearest_cell(ip, x, s);
-    else interp_shepard(ip, x, need, s);
-    return stencil_end_row(s);
-}
-
 /* ---- the rows of the faces ---- */
 
 void interp_face_point(const FvMesh *f, int i, int k, double x[3])
@@ -443,28 +435,56 @@ static void face_rows(Interp *ip)
     ip->st.mean_size = s->nrows ? (double)s->off[s->nrows] / s->nrows : 0;
 }
 
+/* The search index and what hangs on it (multilinear's lattice, the wall
+   cells of interp_lin.c).  It is needed while the face rows are built and
+   by interp_point only, so interp_init frees it when the rows are done
+   (about 60 bytes a cell) and interp_point builds it again on its first
+   call. */
+static int index_make(Interp *ip, const char *grid, Err *e)
+{
+    ip->ix = mem_calloc(1, sizeof *ip->ix);
+    index_build(ip->ix, ip->f, ip->o.boundary_sources);
+    if (ip->o.method == INTERP_MULTILINEAR && interp_ml_check(ip, grid, e)) return -1;
+    interp_lin_init(ip);
+    return 0;
+}
+
+static void index_drop(Interp *ip)
+{
+    if (ip->ix) index_free(ip->ix);
+    free(ip->ix);
+    ip->ix = NULL;
+}
+
+int interp_point(Interp *ip, const double x[3], int need, Stencil *s)
+{
+    Err e;
+    if (!ip->ix) index_make(ip, NULL, &e); /* interp_init passed its checks */
+    if (ip->o.method == INTERP_MULTILINEAR) interp_multilinear(ip, x, s);
+    else if (ip->o.method == INTERP_NONE) nearest_cell(ip, x, s);
+    else interp_shepard(ip, x, need, s);
+    return stencil_end_row(s);
+}
+
 int interp_init(Interp *ip, const FvMesh *f, const InterpOpts *o, const char *grid, Err *e)
 {
     memset(ip, 0, sizeof *ip);
     ip->o = *o;
     ip->f = f;
-    ip->ix = mem_calloc(1, sizeof *ip->ix);
     ip->st.radius_max = o->radius;
-    index_build(ip->ix, f, o->boundary_sources);
-    if (o->method == INTERP_MULTILINEAR && interp_ml_check(ip, grid, e)) {
+    if (index_make(ip, grid, e)) {
         interp_free(ip);
         return -1;
     }
-    interp_lin_init(ip);
     stencil_init(&ip->face);
     face_rows(ip);
+    index_drop(ip);
     return 0;
 }
 
 void interp_free(Interp *ip)
 {
-    if (ip->ix) index_free(ip->ix);
-    free(ip->ix);
+    index_drop(ip);
     stencil_free(&ip->face);
     memset(ip, 0, sizeof *ip);
 }

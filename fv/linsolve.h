@@ -82,6 +82,15 @@ void linsolve_settings_free(LinSettings *s);
 /* A solver for the matrix M (its arrays are shared with PETSc, not
    copied: M must outlive the LinSystem and keep its pattern). */
 LinSystem *linsolve_new(const LinSettings *s, FvMatrix *M, Err *e);
+/* A solver for the matrix of `with` that shares with's PETSc solver
+   (KSP, preconditioner, work vectors: memory once, and a preconditioner
+   built for one system's values serves the other's) when the two agree
+   on solver, preconditioner, maxIter and petscOptions; otherwise its own,
+   as linsolve_new.  Names, fvSolution lines and tolerances stay each
+   system's own.  The systems may be freed in any order. */
+LinSystem *linsolve_new_shared(const LinSettings *s, LinSystem *with, Err *e);
+/* Do a and b share one PETSc solver? */
+int linsolve_shares(const LinSystem *a, const LinSystem *b);
 void linsolve_free(LinSystem *L);
 
 /* Solves M x = M.rhs from the initial guess x (ncols values; serial, so
@@ -90,6 +99,12 @@ void linsolve_free(LinSystem *L);
    the system's name, the residual reached and the fvSolution file and
    line of its entry; x then holds the last iterate. */
 int linsolve_solve(LinSystem *L, double *x, LinStats *st, Err *e);
+/* The same for a caller whose every change of M's values goes through
+   fvmatrix_zero or fvmatrix_zero_values (which bump M->state): the
+   preconditioner is rebuilt only when M->state moved since it was built,
+   so systems that share a solver and a matrix (linsolve_new_shared) solve
+   one after the other on one factorisation. */
+int linsolve_solve_tracked(LinSystem *L, double *x, LinStats *st, Err *e);
 
 /* "cg+icc": the PETSc solver and preconditioner in use (after
    petscOptions). */

@@ -51,16 +51,6 @@ int stencil_end_row(Stencil *s)
     return r;
 }
 
-double stencil_apply(const Stencil *s, int r, int ncells, const double *xc, const double *xb)
-{
-    double v = 0;
-    for (int k = s->off[r]; k < s->off[r + 1]; k++) {
-        int q = s->src[k];
-        v += s->w[k] * (q < ncells ? xc[q] : xb[q - ncells]);
-    }
-    return v;
-}
-
 double stencil_row_sum(const Stencil *s, int r)
 {
     double v = 0;

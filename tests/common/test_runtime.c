@@ -63,6 +63,7 @@ TEST(control_defaults)
     EXPECT(c.startFrom == START_START && c.startTime == 0 && c.stopAt == STOP_END, "start/stop");
     EXPECT(c.endTime == 2.5 && c.deltaT == 0.01, "endTime %g deltaT %g", c.endTime, c.deltaT);
     EXPECT(c.writeControl == WRITE_TIMESTEP && c.writeInterval == 1 && c.purgeWrite == 0, "write control");
+    EXPECT(c.writeVTK == 1, "writeVTK defaults to yes");
     EXPECT(c.writeBinary == 0 && c.writeCompression == 0 && c.writePrecision == 6, "write format");
     EXPECT(c.timeFormat == TIMEFMT_GENERAL && c.timePrecision == 6, "time format");
     EXPECT(c.runTimeModifiable == 1 && c.adjustTimeStep == 0 && c.maxCo == 1 && c.maxDeltaT == 1e15,
@@ -77,7 +78,7 @@ TEST(control_cavity)
     char *dir = scratch_case("rt_cavity");
     control(dir, "application icoFoam;\nstartFrom latestTime;\nstartTime 0.1;\nstopAt writeNow;\n"
                  "endTime 0.5;\ndeltaT 0.005;\nwriteControl adjustableRunTime;\nwriteInterval 20;\n"
-                 "purgeWrite 3;\nwriteFormat binary;\nwritePrecision 8;\nwriteCompression on;\n"
+                 "purgeWrite 3;\nwriteVTK no;\nwriteFormat binary;\nwritePrecision 8;\nwriteCompression on;\n"
                  "timeFormat fixed;\ntimePrecision 4;\nrunTimeModifiable yes;\nadjustTimeStep on;\n"
                  "maxCo 0.9;\nmaxDeltaT 1;\nlibs (sampling);\nfunctions { probes { type probes; } }\n");
     Control c;
@@ -86,6 +87,7 @@ TEST(control_cavity)
     EXPECT(rc == 0, "%s", e.msg);
     EXPECT(c.startFrom == START_LATEST && c.startTime == 0.1 && c.stopAt == STOP_WRITENOW, "start/stop");
     EXPECT(c.writeControl == WRITE_ADJUSTABLE && c.writeInterval == 20 && c.purgeWrite == 3, "write control");
+    EXPECT(c.writeVTK == 0, "writeVTK no read as %d", c.writeVTK);
     /* compression is off for binary files, as in OpenFOAM v1912 */
     EXPECT(c.writeBinary == 1 && c.writeCompression == 0 && c.writePrecision == 8, "format %d %d %d",
            c.writeBinary, c.writeCompression, c.writePrecision);
@@ -377,7 +379,7 @@ TEST(keys_table)
         EXPECT(k->help && k->help[0], "no help for %s", k->key);
         required += k->def == NULL;
     }
-    EXPECT(n == 24 && required == 2, "%d keys, %d required", n, required);
+    EXPECT(n == 25 && required == 2, "%d keys, %d required", n, required);
 }
 
 int main(void)

@@ -4,7 +4,9 @@
 ** merged sphere grid (zero normal velocity to round-off with the exact
 ** boundaryNormal); cyclic pairs on a graded periodic block grid and on the
 ** periodic inclined channel of thesis §5.1.3 (cut, and cut and merged);
-** and every refusal with the field file and the line of the patch entry.
+** and every refusal with the field file and the line of the patch entry;
+** the open boundaries an isothermal model may take (bc_check_open: one of
+** rho and U fixed, both at a supersonic inflow), in 2-D and 3-D.
 */
 #include "bc.h"
 #include "cut.h"
@@ -651,6 +653,111 @@ TEST(errors_partner)
     mesh_free(&m);
 }
 
+/* ---- open boundaries (bc_check_open) ---- */
+
+/* bc_check_open on fm with rho's and U's entries (n each) and sound speed
+   c: its return value, the message into msg. */
+static int check_open(const FvMesh *fm, const char *const *rho_ent, const char *const *u_ent, int n, double c,
+                      char *msg)
+{
+    char *pr = field_file("rho", 1, rho_ent, n), *pu = field_file("U", 3, u_ent, n);
+    Field fr, fu;
+    Bc br, bu;
+    Err e;
+    int rc = -2;
+    msg[0] = 0;
+    if (load(&br, &fr, fm, pr, &e) || load(&bu, &fu, fm, pu, &e)) {
+        snprintf(msg, ERR_MSG_MAX, "%s", e.msg);
+        return rc;
+    }
+    rc = bc_check_open(&br, &bu, &fr, &fu, c, &e);
+    if (rc) snprintf(msg, ERR_MSG_MAX, "%s", e.msg);
+    bc_free(&br);
+    bc_free(&bu);
+    field_free(&fr);
+    field_free(&fu);
+    free(pr);
+    free(pu);
+    return rc;
+}
+
+/* On the 2 x 2 grid (inlet xMin, outlet xMax; outward normals -x, +x),
+   c = 2: the well-posed pairs pass, walls with a fixed rho pass, a
+   supersonic inflow with both fixed passes, and each ill-posed pair is
+   refused at rho's entry naming U's and the counts (2 and 1 in 2-D). */
+TEST(open_boundaries)
+{
+    Mesh m;
+    grid_small(&m);
+    FvMesh fm;
+    Err e;
+    EXPECT(fvmesh_init(&fm, &m, &e) == 0, "%s", e.msg);
+    const char *ok_r[] = {"inlet { type zeroGradient; }", "outlet { type fixedValue; value uniform 1; }",
+                          "bottom { type fixedValue; value uniform 1; }", "top { type zeroGradient; }",
+                          "frontAndBack { type empty; }"};
+    const char *ok_u[] = {"inlet { type fixedValue; value uniform (1 0.5 0); }", "outlet { type zeroGradient; }",
+                          "bottom { type noSlip; }", "top { type slip; }", "frontAndBack { type empty; }"};
+    char msg[ERR_MSG_MAX];
+    const char *got = msg;
+    EXPECT(check_open(&fm, ok_r, ok_u, 5, 2, msg) == 0, "well-posed pairs refused: %s", msg);
+    /* rho fixed on the inlet too: subsonic (|u.n| = 1 < 2) */
+    const char *fix_r[] = {"inlet { type fixedValue; value uniform 1; }", ok_r[1], ok_r[2], ok_r[3], ok_r[4]};
+    EXPECT(check_open(&fm, fix_r, ok_u, 5, 2, msg) == -1, "both fixed at a subsonic inflow accepted");
+    CONTAINS(got, ":6: patch 'inlet': rho (fixedValue) and U (fixedValue, ");
+    CONTAINS(got, "U:6) are both fixed");
+    CONTAINS(got, "takes 2 conditions at a subsonic inflow");
+    CONTAINS(got, "never 3");
+    /* supersonic at both faces: accepted; at one face only: refused */
+    const char *sup_u[] = {"inlet { type fixedValue; value uniform (2 7 0); }", ok_u[1], ok_u[2], ok_u[3], ok_u[4]};
+    EXPECT(check_open(&fm, fix_r, sup_u, 5, 2, msg) == 0, "a supersonic inflow refused: %s", msg);
+    const char *half_u[] = {"inlet { type fixedValue; value nonuniform List<vector> 2((2 0 0) (1.99 0 0)); }", ok_u[1],
+                            ok_u[2], ok_u[3], ok_u[4]};
+    EXPECT(check_open(&fm, fix_r, half_u, 5, 2, msg) == -1, "an inflow subsonic at one face accepted");
+    /* supersonic outward (an outflow fixed both ways): refused */
+    const char *out_u[] = {"inlet { type fixedValue; value uniform (-3 0 0); }", ok_u[1], ok_u[2], ok_u[3], ok_u[4]};
+    EXPECT(check_open(&fm, fix_r, out_u, 5, 2, msg) == -1, "both fixed at a supersonic outflow accepted");
+    /* neither fixed on the outlet; a symmetryPlane rho counts as a zero gradient */
+    const char *free_r[] = {ok_r[0], "outlet { type symmetryPlane; }", ok_r[2], ok_r[3], ok_r[4]};
+    EXPECT(check_open(&fm, free_r, ok_u, 5, 2, msg) == -1, "neither fixed accepted");
+    CONTAINS(got, ":7: patch 'outlet': neither rho (symmetryPlane) nor U (zeroGradient, ");
+    CONTAINS(got, "needs 2 conditions at a subsonic inflow and 1");
+    CONTAINS(got, "use fixedValue rho with zeroGradient U at an outflow");
+    /* calculated is a fixed value */
+    const char *calc_u[] = {ok_u[0], "outlet { type calculated; value uniform (1 0 0); }", ok_u[2], ok_u[3], ok_u[4]};
+    EXPECT(check_open(&fm, ok_r, calc_u, 5, 2, msg) == -1, "calculated U with fixed rho accepted");
+    CONTAINS(got, "rho (fixedValue) and U (calculated, ");
+    fvmesh_free(&fm);
+    mesh_free(&m);
+}
+
+/* A 3-D grid: the counts are d = 3 at an inflow, never 4. */
+TEST(open_boundaries_3d)
+{
+    double xs[] = {0, 0.5, 1}, ys[] = {0, 1}, zs[] = {0, 1};
+    double *x[3] = {xs, ys, zs};
+    int n[3] = {2, 1, 1};
+    BlockSide side[BLOCK_NSIDES] = {{"inlet", "patch", NULL}, {"outlet", "patch", NULL}, {"walls", "wall", NULL},
+                                    {"walls", "wall", NULL},  {"walls", "wall", NULL},   {"walls", "wall", NULL}};
+    Mesh m;
+    Err e;
+    mesh_init(&m);
+    EXPECT(block_mesh(&m, x, n, side, NULL, "test", NULL, &e) == 0, "%s", e.msg);
+    FvMesh fm;
+    EXPECT(fvmesh_init(&fm, &m, &e) == 0, "%s", e.msg);
+    const char *r[] = {"inlet { type fixedValue; value uniform 1; }", "outlet { type fixedValue; value uniform 1; }",
+                       "walls { type zeroGradient; }"};
+    const char *u[] = {"inlet { type fixedValue; value uniform (1 0 0); }", "outlet { type zeroGradient; }",
+                       "walls { type noSlip; }"};
+    char msg[ERR_MSG_MAX];
+    const char *got = msg;
+    EXPECT(check_open(&fm, r, u, 3, 2.5, msg) == -1, "both fixed accepted in 3-D");
+    CONTAINS(got, "takes 3 conditions at a subsonic inflow");
+    CONTAINS(got, "never 4");
+    CONTAINS(got, "u.n <= -sqrt(RsT) = -2.5");
+    fvmesh_free(&fm);
+    mesh_free(&m);
+}
+
 int main(void)
 {
     RUN(vector_types);
@@ -663,5 +770,7 @@ int main(void)
     RUN(errors);
     RUN(errors_grid);
     RUN(errors_partner);
+    RUN(open_boundaries);
+    RUN(open_boundaries_3d);
     return test_summary();
 }

@@ -4,7 +4,9 @@
 ** pattern, one entry per distinct pair of neighbours (merged cells share
 ** several faces), the face positions, the extra sources of interpolation
 ** stencils (spec §4.3), on a block grid, a 2-D block grid and a cut and
-** merged grid; the values (zeroing, adding a stencil row, the product).
+** merged grid; the values (zeroing, adding a stencil row, the product);
+** zeroing the values and the right-hand side apart, and the state that
+** counts the changes of the values (what linsolve_solve_tracked follows).
 */
 #include "cut.h"
 #include "fixture.h"
@@ -224,6 +226,42 @@ TEST(product)
     mesh_free(&m);
 }
 
+/* fvmatrix_zero_values and fvmatrix_zero_rhs each zero their part only;
+   zeroing the values moves the state on, the right-hand side does not. */
+TEST(zero_parts_and_state)
+{
+    Mesh m;
+    int n[3] = {4, 3, 2};
+    double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    fixture_block(&m, n, lo, hi, -1);
+    FvMesh f;
+    Err e;
+    EXPECT(fvmesh_init(&f, &m, &e) == 0, "%s", e.msg);
+    FvMatrix M;
+    face_pattern(&M, &f);
+    unsigned long s0 = M.state;
+    for (int k = 0; k < M.nnz; k++) M.val[k] = 1;
+    for (int r = 0; r < M.nrows; r++) M.rhs[r] = 2;
+    fvmatrix_zero_rhs(&M);
+    double sv = 0, sr = 0;
+    for (int k = 0; k < M.nnz; k++) sv += M.val[k];
+    for (int r = 0; r < M.nrows; r++) sr += fabs(M.rhs[r]);
+    EXPECT(sv == M.nnz && sr == 0 && M.state == s0, "zero_rhs: values sum %g, |rhs| %g, state %lu -> %lu", sv, sr,
+           s0, M.state);
+    for (int r = 0; r < M.nrows; r++) M.rhs[r] = 2;
+    fvmatrix_zero_values(&M);
+    sv = sr = 0;
+    for (int k = 0; k < M.nnz; k++) sv += fabs(M.val[k]);
+    for (int r = 0; r < M.nrows; r++) sr += M.rhs[r];
+    EXPECT(sv == 0 && sr == 2.0 * M.nrows && M.state == s0 + 1, "zero_values: |values| %g, rhs sum %g, state %lu",
+           sv, sr, M.state);
+    fvmatrix_zero(&M);
+    EXPECT(M.state == s0 + 2, "fvmatrix_zero: state %lu, expected %lu", M.state, s0 + 2);
+    fvmatrix_free(&M);
+    fvmesh_free(&f);
+    mesh_free(&m);
+}
+
 int main(void)
 {
     RUN(block_pattern);
@@ -231,5 +269,6 @@ int main(void)
     RUN(stencil_sources);
     RUN(cut_merged_pattern);
     RUN(product);
+    RUN(zero_parts_and_state);
     return test_summary();
 }

@@ -430,8 +430,136 @@ TEST(values_change)
     dict_free(d);
 }
 
+static const char shared_fvsolution[] =
+    "solvers\n"
+    "{\n"
+    "    \"U.*\" { solver PBiCGStab; preconditioner DILU; tolerance 1e-10; maxIter 500; }\n"
+    "    Uy    { solver PBiCGStab; preconditioner DILU; tolerance 1e-3; maxIter 500; }\n"
+    "    Uz    { solver PBiCGStab; preconditioner DILU; maxIter 500; petscOptions \"-ksp_gmres_restart 40\"; }\n"
+    "    Ua    { solver PBiCGStab; preconditioner DILU; tolerance 1e-10; maxIter 400; }\n"
+    "    Ub    { solver PCG; preconditioner DIC; tolerance 1e-10; maxIter 500; }\n"
+    "    Uc    { solver PBiCGStab; preconditioner DILU; tolerance 1e-6; maxIter 500; }\n"
+    "    Uq    { solver PBiCGStab; preconditioner DILU; tolerance 1e-10; maxIter 500; }\n"
+    "    lu    { solver preonly; preconditioner lu; }\n"
+    "}\n";
+
+static LinSystem *system_of(const Dict *d, const char *name, LinSystem *with, FvMatrix *M, LinSettings *s)
+{
+    Err e;
+    if (linsolve_settings(s, d, name, &e)) {
+        printf("%s: %s\n", name, e.msg);
+        exit(1);
+    }
+    LinSystem *L = with ? linsolve_new_shared(s, with, &e) : linsolve_new(s, M, &e);
+    if (!L) {
+        printf("%s: %s\n", name, e.msg);
+        exit(1);
+    }
+    return L;
+}
+
+/* Ux, Uy, Uz, Ua, Ub, Uc, Uq on one matrix, each but Ux made to share
+   Ux's solver: Uy (another tolerance) shares it; Uz (petscOptions), Ua
+   (maxIter), Ub (solver) do not, nor Uq, whose prefix PETSC_OPTIONS names
+   (main sets "-Uq_ksp_type gmres" before PETSc starts).  Uy's solve on the shared solver after
+   Ux's (tracked: the preconditioner kept) equals a fresh unshared Uy
+   solve to the bit; Uc (shared) on a right-hand side with a NaN fails
+   naming Uc and its line. */
+TEST(shared_solver)
+{
+    Err e;
+    Dict *d = dict_parse(shared_fvsolution, strlen(shared_fvsolution), "system/fvSolution", &e);
+    EXPECT(d != NULL, "%s", d ? "" : e.msg);
+    if (!d) return;
+    Grid g;
+    shift = 1;
+    grid_make(&g, 32, 0);
+    shift = 0;
+    LinSettings s[8];
+    static const char *const names[7] = {"Ux", "Uy", "Uz", "Ua", "Ub", "Uc", "Uq"};
+    LinSystem *L[7];
+    L[0] = system_of(d, names[0], NULL, &g.M, &s[0]);
+    for (int j = 1; j < 7; j++) L[j] = system_of(d, names[j], L[0], &g.M, &s[j]);
+    EXPECT(linsolve_shares(L[0], L[1]) && linsolve_shares(L[0], L[5]), "Uy, Uc do not share Ux's solver");
+    EXPECT(!linsolve_shares(L[0], L[2]) && !linsolve_shares(L[0], L[3]) && !linsolve_shares(L[0], L[4]),
+           "Uz, Ua or Ub shares Ux's solver");
+    EXPECT(!linsolve_shares(L[0], L[6]) && strcmp(linsolve_describe(L[6]), "gmres+ilu") == 0,
+           "Uq: %s, %s Ux's solver (PETSC_OPTIONS names its prefix)", linsolve_describe(L[6]),
+           linsolve_shares(L[0], L[6]) ? "shares" : "does not share");
+    int nc = g.f.ncells;
+    double *x = calloc((size_t)nc, sizeof *x), *y = calloc((size_t)nc, sizeof *y), *y1 = calloc((size_t)nc, sizeof *y1);
+    LinStats sx, sy, sy1, sc;
+    EXPECT(linsolve_solve_tracked(L[0], x, &sx, &e) == 0, "%s", e.msg);
+    EXPECT(linsolve_solve_tracked(L[1], y, &sy, &e) == 0, "%s", e.msg);
+    EXPECT(sx.final <= 1e-10 && sy.final <= 1e-3 && sy.iters < sx.iters,
+           "Ux: %.3e after %d, Uy: %.3e after %d (each its own tolerance)", sx.final, sx.iters, sy.final, sy.iters);
+    LinSystem *Ly = system_of(d, "Uy", NULL, &g.M, &s[7]);
+    EXPECT(linsolve_solve(Ly, y1, &sy1, &e) == 0, "%s", e.msg);
+    EXPECT(memcmp(y, y1, sizeof(double) * (size_t)nc) == 0 && sy.iters == sy1.iters && sy.final == sy1.final,
+           "Uy shared and alone differ: %d and %d iterations, %.17g and %.17g", sy.iters, sy1.iters, sy.final,
+           sy1.final);
+    memset(x, 0, sizeof(double) * (size_t)nc);
+    double b0 = g.M.rhs[0];
+    g.M.rhs[0] = NAN;
+    EXPECT(linsolve_solve_tracked(L[5], x, &sc, &e) != 0 && strstr(e.msg, "fvSolution:8:") &&
+               strstr(e.msg, "solving for Uc"),
+           "Uc: %s (%d iterations, residual %.3e)", e.msg, sc.iters, sc.final);
+    printf("  shared: Ux %d iterations to %.2e, Uy %d to %.2e; Uc: %s\n", sx.iters, sx.final, sy.iters, sy.final,
+           e.msg);
+    g.M.rhs[0] = b0;
+    linsolve_free(L[0]); /* the others still use its solver */
+    memset(y, 0, sizeof(double) * (size_t)nc);
+    EXPECT(linsolve_solve_tracked(L[1], y, &sy, &e) == 0 && memcmp(y, y1, sizeof(double) * (size_t)nc) == 0,
+           "Uy after Ux was freed: %s", e.msg);
+    for (int j = 1; j < 7; j++) linsolve_free(L[j]);
+    linsolve_free(Ly);
+    for (int j = 0; j < 8; j++) linsolve_settings_free(&s[j]);
+    free(x);
+    free(y);
+    free(y1);
+    grid_free(&g);
+    dict_free(d);
+}
+
+/* A direct solve (LU) through linsolve_solve_tracked: values changed
+   without fvmatrix_zero keep the old factors (the state did not move: the
+   solution is the old system's, its residual large); assembled anew after
+   fvmatrix_zero the factors are rebuilt (exact again). */
+TEST(tracked_preconditioner)
+{
+    Err e;
+    Dict *d = dict_parse(shared_fvsolution, strlen(shared_fvsolution), "system/fvSolution", &e);
+    EXPECT(d != NULL, "%s", d ? "" : e.msg);
+    if (!d) return;
+    Grid g;
+    grid_make(&g, 24, 0);
+    LinSettings s;
+    LinSystem *L = system_of(d, "lu", NULL, &g.M, &s);
+    int nc = g.f.ncells;
+    double *phi = calloc((size_t)nc, sizeof *phi);
+    LinStats st, stale, fresh;
+    EXPECT(linsolve_solve_tracked(L, phi, &st, &e) == 0 && st.final < 1e-12, "first LU solve: %.3e %s", st.final,
+           e.msg);
+    for (int c = 0; c < nc; c++) g.M.val[g.M.diag[c]] += 50 * g.m.cell_vol[c];
+    memset(phi, 0, sizeof(double) * (size_t)nc);
+    EXPECT(linsolve_solve_tracked(L, phi, &stale, &e) == 0 && stale.final > 1e-6,
+           "values changed, state kept: residual %.3e (the factors were rebuilt)", stale.final);
+    assemble(&g.M, &g.f);
+    for (int c = 0; c < nc; c++) g.M.val[g.M.diag[c]] += 50 * g.m.cell_vol[c];
+    memset(phi, 0, sizeof(double) * (size_t)nc);
+    EXPECT(linsolve_solve_tracked(L, phi, &fresh, &e) == 0 && fresh.final < 1e-12,
+           "assembled after fvmatrix_zero: residual %.3e", fresh.final);
+    printf("  LU: stale factors give residual %.2e, rebuilt %.2e\n", stale.final, fresh.final);
+    linsolve_free(L);
+    linsolve_settings_free(&s);
+    free(phi);
+    grid_free(&g);
+    dict_free(d);
+}
+
 int main(void)
 {
+    setenv("PETSC_OPTIONS", "-Uq_ksp_type gmres", 1); /* read when PETSc starts: shared_solver */
     if (getenv("KIESEL_LINSOLVE_BENCH")) {
         bench();
         linsolve_finalize();
@@ -445,6 +573,8 @@ int main(void)
     RUN(reltol_and_exact_guess);
     RUN(options_prefix);
     RUN(values_change);
+    RUN(shared_solver);
+    RUN(tracked_preconditioner);
     linsolve_finalize();
     return test_summary();
 }

@@ -2,10 +2,13 @@
 # tutorials/granular/cylinderFlow end to end, shortened: the case is copied
 # to the scratch directory and its controlDict set to endTime 0.5 (1/8 of
 # the tutorial's 4; writeInterval 0.25), then its Allrun runs every step
-# (blockGrid, cutCells, mergeCells, checkGrid, solveGranular, sampleLine,
-# writeVTK, the plot).  Checks:
+# (blockGrid, cutCells, mergeCells, checkGrid, solveGranular, which writes
+# the VTK files too, sampleLine, the plot).  Checks:
 #   - every log ends with End (checkGrid's with "Grid OK."), the files the
-#     header promises exist (the PNG when gnuplot is installed);
+#     header promises exist (the PNG when gnuplot is installed), among them
+#     solveGranular's VTK: the internal mesh and the patches inlet,
+#     outlet, walls, cylinder at t = 0, 0.25, 0.5, and series files that
+#     list those three times;
 #   - mass balance: mass(0) - mass(t) = the mass that left through inlet
 #     and outlet, integrated step by step (the log's "mass out since
 #     start"), to 1e-12 of the mass, at every step: the internal fluxes
@@ -33,7 +36,7 @@ sed -i 's/^endTime .*/endTime 0.5;/; s/^writeInterval .*/writeInterval 0.25;/' "
 timed_allrun cylinderFlow_allrun "$case"
 
 bad=""
-for app in blockGrid cutCells mergeCells checkGrid solveGranular sampleLine writeVTK; do
+for app in blockGrid cutCells mergeCells checkGrid solveGranular sampleLine; do
     log=$case/log.$app
     if [ ! -s "$log" ]; then bad="$bad log.$app missing;"; continue; fi
     last=$(grep -v '^[[:space:]]*$' "$log" | tail -n 1)
@@ -54,8 +57,13 @@ done
 if command -v gnuplot > /dev/null 2>&1 && [ ! -s "$case/postProcessing/sampleLine/0.5/cylinderFlow.png" ]; then
     missing="$missing postProcessing/sampleLine/0.5/cylinderFlow.png"
 fi
-nvtk=$(ls "$case"/VTK/cylinderFlow_*.vtk 2>/dev/null | wc -l)
-[ "$nvtk" -eq 3 ] || missing="$missing VTK/cylinderFlow_<index>.vtk ($nvtk files, expected 3: t = 0, 0.25, 0.5)"
+for p in cylinderFlow inlet outlet walls cylinder; do
+    d=VTK/$p; [ $p = cylinderFlow ] && d=VTK
+    nvtk=$(ls "$case/$d/${p}_"*.vtk 2>/dev/null | wc -l)
+    [ "$nvtk" -eq 3 ] || missing="$missing $d/${p}_<index>.vtk ($nvtk files, expected 3: t = 0, 0.25, 0.5)"
+    times=$(sed -n 's/.*"time" : \([^ ]*\) }.*/\1/p' "$case/$d/$p.vtk.series" 2>/dev/null | tr '\n' ' ')
+    [ "$times" = "0 0.25 0.5 " ] || missing="$missing $d/$p.vtk.series (times '$times', expected 0 0.25 0.5)"
+done
 if [ -z "$missing" ]; then pass cylinderFlow_files; else fail cylinderFlow_files "missing:$missing"; fi
 
 "${KIESEL_PYTHON:-/usr/bin/python3}" - "$case" <<'PYEOF'

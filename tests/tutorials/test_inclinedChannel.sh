@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # tutorials/granular/inclinedChannel end to end: copies the case to the
 # scratch directory, runs its Allrun (blockGrid, cutCells, mergeCells,
-# solveGranular to the steady state t = 2, sampleLine, writeVTK, the plot)
+# solveGranular to the steady state t = 2, writing VTK too, sampleLine, the plot)
 # and checks the velocity sampled across the channel against the exact
 # plane Poiseuille profile u(eta) = g eta (W - eta)/(2 nu), W = 0.5,
 # g = 9.81, nu = 0.25 (u_max = 1.22625):
@@ -12,8 +12,9 @@
 #     0.4 %);
 #   - the density on the line within 0.1 of rho0 = 1 (measured 0.046:
 #     the first-order density error next to the cut walls, Table 5.1);
-# every log ends with End, the VTK series and the plot exist.  Allclean
-# must restore the case.
+# every log ends with End, the plot exists, solveGranular's VTK series
+# (internal, lowerWall, upperWall) list the write times 0 0.5 1 1.5 2 and
+# their files exist.  Allclean must restore the case.
 set -u
 . "${KIESEL_TOP:-$(dirname "$0")/../..}/tests/lib.sh"
 top=${KIESEL_TOP:-$(cd "$(dirname "$0")/../.." && pwd)}
@@ -35,7 +36,7 @@ fi
 pass inclinedChannel_allrun "$(awk -v a=$t0 -v b=$t1 'BEGIN{printf "%.1f", b-a}') s"
 
 bad=""
-for app in blockGrid cutCells mergeCells solveGranular sampleLine writeVTK; do
+for app in blockGrid cutCells mergeCells solveGranular sampleLine; do
     last=$(grep -v '^[[:space:]]*$' "$case/log.$app" 2>/dev/null | tail -n 1)
     [ "$last" = End ] || bad="$bad log.$app ends with '$last';"
 done
@@ -45,6 +46,15 @@ done
 if command -v gnuplot > /dev/null 2>&1 && [ ! -s "$case/postProcessing/sampleLine/2/profile.png" ]; then
     bad="$bad profile.png missing;"
 fi
+for p in inclinedChannel lowerWall upperWall; do
+    d=VTK/$p; [ $p = inclinedChannel ] && d=VTK
+    ser=$case/$d/$p.vtk.series
+    times=$(sed -n 's/.*"time" : \([^ ]*\) }.*/\1/p' "$ser" 2>/dev/null | tr '\n' ' ')
+    [ "$times" = "0 0.5 1 1.5 2 " ] || bad="$bad $d/$p.vtk.series lists '$times';"
+    for f in $(sed -n 's/.*"name" : "\([^"]*\)".*/\1/p' "$ser" 2>/dev/null); do
+        [ -s "$case/$d/$f" ] || bad="$bad $d/$f missing;"
+    done
+done
 if [ -z "$bad" ]; then pass inclinedChannel_files; else fail inclinedChannel_files "$bad"; fi
 
 res=$(/usr/bin/python3 - "$case/postProcessing/sampleLine/2/across.csv" <<'PY'

@@ -30,6 +30,7 @@ static const ArgDict dicts[] = {
     {"constant/granularProperties", props_keys, "constant/g (optional, no file: no gravity): dimensions [0 1 -2 0 0 0 0]; value (gx gy gz);"},
     {"constant/granularProperties: NewtonianCoeffs", props_newtonian_keys, NULL},
     {"system/fvSchemes: divSchemes", gran_div_keys, NULL},
+    {"system/fvSchemes: gravitySchemes", gran_gravity_keys, NULL},
     {"system/fvSchemes: interpolationSchemes", interp_keys, NULL},
     {"system/fvSchemes: interpolationSchemes.shepardCoeffs", interp_shepard_keys, NULL},
     {"system/fvSolution: solvers.Ux, Uy, Uz", linsolve_keys, NULL},
@@ -81,13 +82,24 @@ typedef struct Run {
     double written;    /* the last time on disk */
 } Run;
 
+/* The VTK line of state_write or state_write_vtk (a block of its own in
+   the log), or the error. */
+static void report_vtk(int rc, Buf *log, Err *e)
+{
+    if (rc) err_die(e);
+    if (log->n) printf("%s\n", log->p);
+    buf_free(log);
+}
+
 static void write_time(Run *r, double t)
 {
     Err e;
     char name[64];
+    Buf log;
+    buf_init(&log);
     Field *f[3] = {&r->rho, &r->U, &r->p};
     gran_pressure(&r->g, &r->p);
-    if (state_write(&r->cs, &r->m, f, 3, t, r->tl.index, r->tl.dt, r->tl.dt0, name, &e)) err_die(&e);
+    report_vtk(state_write(&r->cs, &r->m, f, 3, t, r->tl.index, r->tl.dt, r->tl.dt0, name, &log, &e), &log, &e);
     r->written = t;
 }
 
@@ -138,8 +150,8 @@ static void read_case(Run *r, const Args *a, Interp *ip, FvMesh *fm, Start *st)
     if (props_read(&pr, r->cs.dir, &e)) err_die(&e);
     Dict *schemes = read_system(&r->cs, "system/fvSchemes"), *sol = read_system(&r->cs, "system/fvSolution");
     InterpOpts io;
-    TvdScheme div[2];
-    if (gran_read_div(schemes, div, &e) || interp_read_opts(schemes, &io, &e) || state_start(&r->cs, st, &e))
+    GranSchemes sch;
+    if (gran_read_schemes(schemes, &sch, &e) || interp_read_opts(schemes, &io, &e) || state_start(&r->cs, st, &e))
         err_die(&e);
     char *mpath = case_path(&r->cs, "constant/polyMesh");
     if (mesh_read(&r->m, mpath, &e) || fvmesh_init(fm, &r->m, &e) || interp_init(ip, fm, &io, mpath, &e)) err_die(&e);
@@ -148,7 +160,7 @@ static void read_case(Run *r, const Args *a, Interp *ip, FvMesh *fm, Start *st)
         err_die(&e);
     print_warnings(&r->rho);
     print_warnings(&r->U);
-    if (gran_init(&r->g, fm, ip, &pr, div, &r->rho, &r->U, sol, &e)) err_die(&e);
+    if (gran_init(&r->g, fm, ip, &pr, &sch, &r->rho, &r->U, sol, &e)) err_die(&e);
     r->g.time = st->value;
     double zero = 0;
     field_init(&r->p, &r->m, "p", 1, &zero, "calculated");
@@ -165,7 +177,10 @@ static long run(const Args *a, Run *r, const Start *st)
     double mass0 = gran_mass(&r->g);
     timeloop_init(&r->tl, &r->cs.control, st->value, st->index, st->dt);
     r->written = st->value;
-    printf("\nStarting time loop at Time = %s, total mass %.15g\n\n", st->name, mass0);
+    Buf log;
+    buf_init(&log);
+    report_vtk(state_write_vtk(&r->cs, &r->m, st->name, &log, &e), &log, &e);
+    printf("Starting time loop at Time = %s, total mass %.15g\n\n", st->name, mass0);
     while (timeloop_running(&r->tl) && !stop_signal) {
         int changed = runtime_reread(&r->cs.control, &e);
         if (changed < 0) err_warn("%s (keeping the old settings)", e.msg);

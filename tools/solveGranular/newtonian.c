@@ -4,9 +4,10 @@
 ** The step computes the new state into its own arrays (rho1, U1) and
 ** copies it into the fields only when every solve converged and every
 ** value is finite with a positive density, so a failed step loses
-** nothing.  Components are solved in order x, y, z on one matrix, each
-** assembled anew (the boundary coefficients a, b differ per component:
-** slip).  The velocity component along the empty axis of a 2-D grid is
+** nothing.  Components are solved in order x, y, z on one matrix,
+** assembled once a step and again only for a component whose boundary
+** coefficients differ (slip), and with one PETSc solver when their
+** fvSolution entries agree (fv/linsolve.h).  The velocity component along the empty axis of a 2-D grid is
 ** not solved and keeps its value, as OpenFOAM's solvers do.
 */
 #include "newtonian.h"
@@ -27,7 +28,16 @@ const DictKey gran_div_keys[] = {
     {"div(phi,U)", "default", "convection of momentum rho u"},
     {NULL, NULL, NULL}};
 
-int gran_read_div(const Dict *fvschemes, TvdScheme div[2], Err *e)
+const char *const gran_gravity_names[] = {"wellBalanced", "cellSource", NULL};
+
+const DictKey gran_gravity_keys[] = {
+    {"default", "wellBalanced",
+     "pressure force and gravity: wellBalanced (each cell's hydrostatic profile p = RsT rho exp(g.(x - x_C)/RsT) "
+     "carried to the faces: a column at rest stays at rest to round-off on every grid) | cellSource (the "
+     "plain face pressure and rho_C g V_C: no rest state on cut and Voronoi grids); the same when g = 0"},
+    {NULL, NULL, NULL}};
+
+static int read_div(const Dict *fvschemes, TvdScheme div[2], Err *e)
 {
     static const char *const keys[2] = {"div(phi,rho)", "div(phi,U)"};
     TvdScheme def = {TVD_UPWIND, 1};
@@ -48,6 +58,20 @@ int gran_read_div(const Dict *fvschemes, TvdScheme div[2], Err *e)
     return 0;
 }
 
+static int read_gravity(const Dict *fvschemes, int *scheme, Err *e)
+{
+    *scheme = GRAN_WELL_BALANCED;
+    const Dict *d = dict_subdict_opt(fvschemes, "gravitySchemes");
+    if (!d) return 0;
+    if (dict_check_keys(d, gran_gravity_keys, e)) return -1;
+    return dict_choice_or(d, "default", gran_gravity_names, GRAN_WELL_BALANCED, scheme, e);
+}
+
+int gran_read_schemes(const Dict *fvschemes, GranSchemes *sch, Err *e)
+{
+    return read_div(fvschemes, sch->div, e) || read_gravity(fvschemes, &sch->gravity, e) ? -1 : 0;
+}
+
 /* Impermeable boundary faces of U: noSlip, movingWall, slip, symmetryPlane. */
 static void mark_walls(Granular *g)
 {
@@ -65,7 +89,6 @@ static void alloc_work(Granular *g)
 {
     size_t nc = (size_t)g->f->ncells + 1, nf = (size_t)g->f->nfaces + 1, nb = (size_t)g->f->nboundary + 1;
     g->phi = mem_calloc(nf, sizeof(double));
-    g->cf = mem_alloc(nf * sizeof(double));
     g->pf = mem_calloc(nf, sizeof(double));
     g->rho1 = mem_alloc(nc * sizeof(double));
     g->U1 = mem_alloc(3 * nc * sizeof(double));
@@ -79,8 +102,6 @@ static void alloc_work(Granular *g)
     g->xb3 = mem_alloc(3 * nb * sizeof(double));
     g->xbr = mem_alloc(nb * sizeof(double));
     g->patch_out = mem_calloc((size_t)g->bc_rho.npatches + 1, sizeof(double));
-    double c = sqrt(g->pr.RsT);
-    for (size_t i = 0; i < nf; i++) g->cf[i] = c;
 }
 
 /* The matrix, its diffusion positions and the solvers of the components. */
@@ -96,26 +117,31 @@ static int init_solvers(Granular *g, const Dict *fvsolution, Err *e)
         if (k != g->f->empty_axis) g->axis[g->naxes++] = k;
     for (int j = 0; j < g->naxes; j++) {
         if (linsolve_settings(&g->set[j], fvsolution, names[g->axis[j]], e)) return -1;
-        g->L[j] = linsolve_new(&g->set[j], &g->M, e);
+        /* one PETSc solver for all components when their settings agree */
+        g->L[j] = j ? linsolve_new_shared(&g->set[j], g->L[j - 1], e) : linsolve_new(&g->set[j], &g->M, e);
         if (!g->L[j]) return -1;
     }
     return 0;
 }
 
-int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, const TvdScheme div[2],
+int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, const GranSchemes *sch,
               Field *rho, Field *U, const Dict *fvsolution, Err *e)
 {
     memset(g, 0, sizeof *g);
     g->f = f;
-    g->div_rho = div[0];
-    g->div_U = div[1];
-    tvd_init(&g->tvd, f, div[0].kind == TVD_UPWIND && div[1].kind == TVD_UPWIND ? 0 : 3);
+    g->div_rho = sch->div[0];
+    g->div_U = sch->div[1];
+    tvd_init(&g->tvd, f, sch->div[0].kind == TVD_UPWIND && sch->div[1].kind == TVD_UPWIND ? 0 : 3);
     g->ip = ip;
     g->pr = *pr;
+    g->gravity = sch->gravity;
+    static const double none[3] = {0, 0, 0};
+    hydro_init(&g->hy, f, ip, g->gravity == GRAN_WELL_BALANCED ? pr->g : none, pr->RsT);
     g->rho = rho;
     g->U = U;
     if (bc_init(&g->bc_rho, rho, f, e)) return -1;
     if (bc_init(&g->bc_U, U, f, e)) return -1;
+    if (bc_check_open(&g->bc_rho, &g->bc_U, rho, U, sqrt(pr->RsT), e)) return -1;
     mark_walls(g);
     alloc_work(g);
     return linsolve_init(e) || init_solvers(g, fvsolution, e) ? -1 : 0;
@@ -132,8 +158,9 @@ void gran_free(Granular *g)
     if (g->bc_U.fm) bc_free(&g->bc_U);
     if (g->bc_rho.fm) bc_free(&g->bc_rho);
     tvd_free(&g->tvd);
-    void *arr[] = {g->wall, g->phi, g->cf,  g->pf, g->rho1, g->U1, g->rhoU, g->conv,
-                   g->force, g->crho, g->x, g->uk, g->xb,   g->xb3, g->xbr, g->patch_out};
+    if (g->hy.off) hydro_free(&g->hy);
+    void *arr[] = {g->wall, g->phi, g->pf, g->rho1, g->U1, g->rhoU, g->conv, g->force,
+                   g->crho, g->x,   g->uk, g->xb,   g->xb3, g->xbr,  g->patch_out};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
     free(g->src_rho);
     free(g->src_m);
@@ -148,12 +175,7 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-int gran_open_patch(const Granular *g, int q)
-{
-    BcKind k = g->bc_U.patch[q].kind;
-    return k != BC_NO_SLIP && k != BC_MOVING_WALL && k != BC_SLIP && k != BC_SYMMETRY_PLANE && k != BC_EMPTY &&
-           k != BC_CYCLIC;
-}
+int gran_open_patch(const Granular *g, int q) { return bc_kind_open(g->bc_U.patch[q].kind); }
 
 /* The mass flow out of each open patch, the boundary part of the upwind
    divergence of rho (the same products fvc_div_upwind sums), and its
@@ -205,7 +227,7 @@ void gran_flux(Granular *g)
 double gran_courant(Granular *g, double dt, double *mean)
 {
     const FvMesh *f = g->f;
-    double co = fvc_courant(f, g->phi, g->cf, dt, g->x), sum = 0;
+    double co = fvc_courant_uniform(f, g->phi, sqrt(g->pr.RsT), dt, g->x), sum = 0;
     for (int c = 0; c < f->nowned; c++) sum += g->x[c];
     *mean = f->nowned ? sum / f->nowned : 0;
     return co;
@@ -213,22 +235,27 @@ double gran_courant(Granular *g, double dt, double *mean)
 
 double gran_mass(const Granular *g) { return fvc_total(g->f, g->rho->v); }
 
-/* Face pressures p_f (newtonian.h) of p = RsT rho. */
+/* Does boundary face b take its owner's pressure (a wall, or a zero
+   gradient of rho)? */
+static int owner_pressure(const Granular *g, int b)
+{
+    return g->wall[b] || g->bc_rho.patch[g->f->face_patch[b]].kind == BC_ZERO_GRADIENT;
+}
+
+/* Face pressures p_f (newtonian.h) of p = RsT rho: the boundary pressures
+   first (from the owner's neighbourhood, fv/hydro.h, or RsT rho_b), then
+   every face's CENTRE row through hydro_face (a boundary face's row is
+   its boundary value; with wellBalanced each source reconstructed to the
+   face). */
 static void face_pressure(Granular *g)
 {
     const FvMesh *f = g->f;
-    const Mesh *m = f->m;
-    double R = g->pr.RsT, x[3];
+    double R = g->pr.RsT;
     for (int c = 0; c < f->ncells; c++) g->crho[c] = R * g->rho->v[c];
     bc_values(&g->bc_rho, g->rho->v, g->xbr);
     for (int b = 0; b < f->nboundary; b++)
-        g->xbr[b] = g->wall[b] ? g->crho[m->owner[f->ninternal + b]] : R * g->xbr[b];
-    for (int i = 0; i < f->nfaces; i++) {
-        if (f->empty_face[i]) g->pf[i] = 0;
-        else if (!fvmesh_two_sided(f, i)) g->pf[i] = g->xbr[i - f->ninternal];
-        else if (f->cartesian_face[i]) g->pf[i] = 0.5 * (g->crho[m->owner[i]] + g->crho[fvmesh_across(f, i, x)]);
-        else g->pf[i] = stencil_apply(&g->ip->face, interp_row(i, INTERP_CENTRE), f->ncells, g->crho, g->xbr);
-    }
+        g->xbr[b] = owner_pressure(g, b) ? hydro_boundary(&g->hy, b, g->crho) : R * g->xbr[b];
+    for (int i = 0; i < f->nfaces; i++) g->pf[i] = f->empty_face[i] ? 0 : hydro_face(&g->hy, i, g->crho, g->xbr);
 }
 
 /* The explicit parts: new density, momentum convection, pressure force. */
@@ -251,25 +278,33 @@ static void explicit_terms(Granular *g, double dt)
     fvc_pressure_force(f, g->pf, g->force);
 }
 
-/* Assembles and solves component k (solver j) into U1. */
+/* Assembles and solves component k (solver j) into U1.  The matrix is
+   the previous component's unless their boundary coefficients differ
+   (slip walls): then only the right-hand side is assembled, and a shared
+   solver keeps its preconditioner (linsolve_solve_tracked). */
 static int solve_component(Granular *g, int j, double dt, Err *e)
 {
     const FvMesh *f = g->f;
     int k = g->axis[j];
     FvMatrix *M = &g->M;
     double t0 = now();
-    fvmatrix_zero(M);
-    fvm_ddt(M, f, g->rho1, dt);
-    fvm_laplacian(&g->op, M, k, g->pr.mu); /* eq. 4.62-4.64 */
+    if (j == 0 || !fvm_same_matrix(&g->op, g->axis[j - 1], k)) {
+        fvmatrix_zero_values(M);
+        fvm_ddt(M, f, g->rho1, dt);
+        fvm_laplacian_matrix(&g->op, M, k, g->pr.mu); /* eq. 4.62-4.64 */
+    }
+    fvmatrix_zero_rhs(M);
+    fvm_laplacian_rhs(&g->op, M, k, g->pr.mu);
     for (int c = 0; c < M->nrows; c++) {
-        double V = f->m->cell_vol[c];
-        M->rhs[c] += V * g->rhoU[3 * c + k] / dt - g->conv[3 * c + k] - g->force[3 * c + k] +
-                     g->rho->v[c] * g->pr.g[k] * V;
+        double V = f->m->cell_vol[c], rho = g->rho->v[c];
+        double F = g->gravity == GRAN_WELL_BALANCED ? g->pr.RsT * rho * g->hy.grav[3 * c + k] /* fv/hydro.h */
+                                                    : rho * g->pr.g[k] * V;
+        M->rhs[c] += V * g->rhoU[3 * c + k] / dt - g->conv[3 * c + k] - g->force[3 * c + k] + F;
     }
     component(f, g->U->v, k, g->x);
     double t1 = now();
     g->t_assembly += t1 - t0;
-    int rc = linsolve_solve(g->L[j], g->x, &g->st[j], e);
+    int rc = linsolve_solve_tracked(g->L[j], g->x, &g->st[j], e);
     g->t_solve += now() - t1;
     if (rc) return -1;
     for (int c = 0; c < f->ncells; c++) g->U1[3 * c + k] = g->x[c];

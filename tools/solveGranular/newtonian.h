@@ -16,12 +16,25 @@
 **   rho^{m+1} = rho^m - dt/V sum_f B(rho, phi)              (eq. 4.60)
 **   V (rho^{m+1} u^{m+1} - (rho u)^m) / dt
 **       = -sum_f B(rho u, phi) - sum_f p_f S_f + sum_f mu |S_f| du^{m+1}/dn
-**         + rho^m g V                                        (eq. 4.66 [OURS])
-** with p_f the mean of the two cells on a face between whole Cartesian
-** cells (eq. 4.61), the interpolated CENTRE value on the other internal
-** faces (cyclic faces are internal faces of the periodic domain, fvmesh.h),
-** the owner's at a wall (zero normal gradient, spec §4.3) and
-** RsT times the density's boundary value elsewhere.  The unknown is u
+**         + F_C                                              (eq. 4.66 [OURS])
+** with the pressure force and gravity F_C chosen in fvSchemes'
+** gravitySchemes (fv/hydro.h, doc/theory.md):
+**   wellBalanced (default)  each source of a face's pressure is
+**       reconstructed to the face along its own hydrostatic profile,
+**       p_{s->f} = RsT rho_s exp(g.(x_f - x_s)/RsT), before the weights act,
+**       and F_C = sum over all faces of C of RsT rho_C exp(g.(x_f - x_C)/RsT)
+**       S_f (outward): the discrete rest state rho_C = c exp(g.x_C/RsT) is
+**       kept to round-off on every grid;
+**   cellSource  p_f of the plain values and F_C = rho_C g V_C, the
+**       thesis's, which has no rest state on cut and Voronoi grids.
+** Both take p_f as the mean of the two cells on a face between whole
+** Cartesian cells (eq. 4.61), the interpolated CENTRE value on the other
+** internal faces (cyclic faces are internal faces of the periodic domain,
+** fvmesh.h), the owner's at a wall and at a zero-gradient open face (zero
+** normal gradient, spec §4.3; wellBalanced: the owner's neighbourhood at
+** the face's potential, each node along its profile, fv/hydro.h) and RsT
+** times the density's boundary value elsewhere; with g = 0 the two are
+** one scheme, bit for bit.  The unknown is u
 ** itself with the new density on the diagonal (doc/theory.md: the same as
 ** the thesis's (rho u)^{m+1} / rho^m to O(dt), boundary conditions stay in
 ** u, momentum is conserved).  A step that fails (a linear solve, a NaN, a
@@ -47,10 +60,19 @@
 #include "dict.h"
 #include "field.h"
 #include "fvm.h"
+#include "hydro.h"
 #include "interp.h"
 #include "linsolve.h"
 #include "props.h"
 #include "tvd.h"
+
+enum { GRAN_WELL_BALANCED, GRAN_CELL_SOURCE };
+
+/* The schemes of fvSchemes the model reads. */
+typedef struct GranSchemes {
+    TvdScheme div[2];      /* divSchemes' div(phi,rho) and div(phi,U) */
+    int gravity;           /* gravitySchemes: GRAN_WELL_BALANCED, ... */
+} GranSchemes;
 
 /* A source hook: fn fills, for each of the f->ncells cells c, rho_src[c]
    = the integral of s_rho over cell c and mom_src[3 c + k] = that of
@@ -70,6 +92,9 @@ typedef struct Granular {
     Bc bc_rho, bc_U;
     TvdScheme div_rho, div_U;   /* divSchemes' div(phi,rho) and div(phi,U) */
     Tvd tvd;               /* their grid data (nothing when both are upwind) */
+    int gravity;           /* GRAN_WELL_BALANCED or GRAN_CELL_SOURCE */
+    Hydro hy;              /* the face pressure weights and gravity vectors
+                              (g = 0 in them for GRAN_CELL_SOURCE) */
     FvMatrix M;
     Fvm op;
     int naxes, axis[3];    /* the velocity components solved (2 in 2-D) */
@@ -77,7 +102,7 @@ typedef struct Granular {
     LinSystem *L[3];
     LinStats st[3];        /* of the last step */
     char *wall;            /* nboundary: 1 on an impermeable face */
-    double *phi, *cf;      /* nfaces: flux, sound speed */
+    double *phi;           /* nfaces: flux */
     double *pf;            /* nfaces: face pressure */
     double *rho1, *U1;     /* the new state */
     double *rhoU, *conv, *force;   /* 3 ncells */
@@ -100,20 +125,24 @@ typedef struct Granular {
                               spent in each part of the steps (GranProfile) */
 } Granular;
 
-/* Keywords of divSchemes, for -help. */
+/* Keywords of divSchemes and gravitySchemes, for -help. */
 extern const DictKey gran_div_keys[];
+extern const DictKey gran_gravity_keys[];
+extern const char *const gran_gravity_names[];
 
-/* fvSchemes' divSchemes into div[0] (div(phi,rho)) and div[1]
-   (div(phi,U)): each entry "Gauss upwind", "Gauss limitedLinear k" or
-   "Gauss vanLeer" (fv/tvd.h), a missing one takes default's (default
-   Gauss upwind; default none requires both).  Another scheme fails with
-   file:line. */
-int gran_read_div(const Dict *fvschemes, TvdScheme div[2], Err *e);
+/* fvSchemes' schemes into sch: divSchemes into div[0] (div(phi,rho)) and
+   div[1] (div(phi,U)), each entry "Gauss upwind", "Gauss limitedLinear k"
+   or "Gauss vanLeer" (fv/tvd.h), a missing one taking default's (default
+   Gauss upwind; default none requires both); gravitySchemes' default
+   wellBalanced | cellSource (absent: wellBalanced).  Another scheme or
+   keyword fails with file:line. */
+int gran_read_schemes(const Dict *fvschemes, GranSchemes *sch, Err *e);
 
-/* Sets up the model on f with the interpolation ip and the convection
-   schemes div (gran_read_div): the boundary conditions of rho and U, the
-   matrix, the solvers of Ux, Uy (, Uz) from fvSolution. */
-int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, const TvdScheme div[2],
+/* Sets up the model on f with the interpolation ip and the schemes sch
+   (gran_read_schemes): the boundary conditions of rho and U, the face
+   pressure weights, the matrix, the solvers of Ux, Uy (, Uz) from
+   fvSolution. */
+int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, const GranSchemes *sch,
               Field *rho, Field *U, const Dict *fvsolution, Err *e);
 void gran_free(Granular *g);
 

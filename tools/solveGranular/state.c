@@ -10,6 +10,7 @@
 #include "dict.h"
 #include "io.h"
 #include "runtime.h"
+#include "vtkcase.h"
 
 int state_start(Case *c, Start *s, Err *e)
 {
@@ -25,11 +26,15 @@ int state_start(Case *c, Start *s, Err *e)
     int rc = 0;
     if (io_exists(path)) {
         Dict *d = dict_read(path, e);
-        double index = 0;
+        double index = 0, dt = s->dt;
         rc = !d || dict_scalar_or(d, "value", s->value, &s->value, e) || dict_scalar_or(d, "index", 0, &index, e) ||
-                     dict_scalar_or(d, "deltaT", s->dt, &s->dt, e)
+                     dict_scalar_or(d, "deltaT", s->dt, &dt, e)
                  ? -1
                  : 0;
+        /* as OpenFOAM's Time::setControls: the saved step only when the
+           step adapts; a fixed step is controlDict's, so that a restart
+           can change it */
+        if (c->control.adjustTimeStep) s->dt = dt;
         s->index = (long)index;
         if (!rc && !(s->dt > 0)) rc = err_set(e, path, 0, "deltaT must be positive");
         dict_free(d);
@@ -53,7 +58,7 @@ int state_read_field(Field *f, const Mesh *m, const Case *c, const char *time, c
 }
 
 int state_write(const Case *c, const Mesh *m, Field *const *f, int n, double t, long index, double dt, double dt0,
-                char *name, Err *e)
+                char *name, Buf *log, Err *e)
 {
     runtime_time_name(&c->control, t, name);
     char *dir = case_path(c, name);
@@ -68,5 +73,11 @@ int state_write(const Case *c, const Mesh *m, Field *const *f, int n, double t, 
         free(path);
     }
     if (!rc) rc = runtime_write_uniform_time(c->dir, name, t, index, dt, dt0, e);
-    return rc ? -1 : runtime_purge(&c->control, c->dir, e);
+    if (!rc) rc = runtime_purge(&c->control, c->dir, e);
+    return rc ? -1 : state_write_vtk(c, m, name, log, e);
+}
+
+int state_write_vtk(const Case *c, const Mesh *m, const char *name, Buf *log, Err *e)
+{
+    return c->control.writeVTK && vtkcase_sync(c->dir, m, name, log, e) < 0 ? -1 : 0;
 }

@@ -4,11 +4,14 @@
 ** value, the step index and the step size, so that a restart from binary
 ** output continues the uninterrupted run bit for bit) and what a write
 ** time holds (rho, U, the derived p, uniform/time), written atomically,
-** field by field, uniform/time last, then purgeWrite.
+** field by field, uniform/time last, then purgeWrite, then (controlDict's
+** writeVTK, default yes) the VTK files writeVTK would write, VTK/ kept a
+** mirror of the time directories left (common/vtkcase.h, vtkcase_sync).
 */
 #ifndef KIESEL_STATE_H
 #define KIESEL_STATE_H
 
+#include "buf.h"
 #include "case.h"
 #include "field.h"
 #include "mesh.h"
@@ -29,8 +32,13 @@ int state_read_field(Field *f, const Mesh *m, const Case *c, const char *time, c
                      Err *e);
 
 /* Writes the fields (n of them) and uniform/time at time t, then purges
-   old times (purgeWrite); the time's name into name (64 bytes). */
+   old times (purgeWrite), then state_write_vtk; the time's name into name
+   (64 bytes), the VTK line into log. */
 int state_write(const Case *c, const Mesh *m, Field *const *f, int n, double t, long index, double dt, double dt0,
-                char *name, Err *e);
+                char *name, Buf *log, Err *e);
+/* With controlDict's writeVTK on: the VTK files of time directory name
+   and the series (vtkcase_sync; the start time's at the start of a run,
+   so that the series begins there); one line into log. */
+int state_write_vtk(const Case *c, const Mesh *m, const char *name, Buf *log, Err *e);
 
 #endif

@@ -8,7 +8,12 @@ and the parallel channel on a grid-aligned block grid (5 cells along x,
 W/h across) as the velocity reference, as the thesis does.  Prints the
 density errors against the exact rho = 1 (L2 = sqrt(sum V e^2 / sum V),
 L1 = sum V |e| / sum V, Linf) and |u_max - u_max,parallel| with observed
-orders beside the thesis's, and one PASS or FAIL line per order.
+orders beside the thesis's, and one PASS or FAIL line per order.  The
+same tables follow for the bounded second-order convection `Gauss
+limitedLinear 1` (divSchemes default: rho and rho u) on the same grids,
+against the same parallel reference (a parallel flow has u.grad = 0, so
+the scheme does not enter its steady state), with no PASS or FAIL: the
+thesis has no such scheme; then the two side by side.
 
 usage: channel.py BIN WORKDIR [h ...]
 """
@@ -19,11 +24,12 @@ DELTA = 0.2   # the lower wall through (0, 0.2 h): see doc/validation.md
 THESIS_T51 = {0.1: (1.779e-4, 1.190e-2), 0.05: (3.530e-5, 5.055e-3), 0.025: (7.704e-6, 2.238e-3),
               0.0125: (1.791e-6, 1.041e-3)}
 THESIS_T52 = {0.1: 1.366e-1, 0.05: 8.917e-2, 0.025: 5.034e-2, 0.0125: 2.672e-2}
+SCHEMES = [('upwind', 'Gauss upwind'), ('limitedLinear 1', 'Gauss limitedLinear 1')]
 
 def hdr(o, c='dictionary'):
     return 'FoamFile { version 2.0; format ascii; class %s; object %s; }\n' % (c, o)
 
-def write_case(d, h, parallel):
+def write_case(d, h, parallel, scheme='Gauss upwind'):
     for s in ('system', 'constant', '0'): os.makedirs(os.path.join(d, s), exist_ok=True)
     def w(f, s): open(os.path.join(d, f), 'w').write(s)
     side = ('boundary { xMin { name left; type cyclic; neighbourPatch right; } '
@@ -59,7 +65,7 @@ def write_case(d, h, parallel):
       'adjustTimeStep yes; maxCo 0.25; writeControl adjustableRunTime; writeInterval 2; writeFormat ascii; '
       'writePrecision 17;\n')
     w('system/fvSchemes', hdr('fvSchemes') +
-      'divSchemes { default Gauss upwind; } interpolationSchemes { default multilinear; }\n')
+      'divSchemes { default %s; } interpolationSchemes { default multilinear; }\n' % scheme)
     w('system/fvSolution', hdr('fvSolution') +
       'solvers { "U.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-12; relTol 0; } }\n')
     w('0/rho', hdr('rho', 'volScalarField') + 'dimensions [1 -3 0 0 0 0 0]; internalField uniform 1; '
@@ -113,8 +119,8 @@ def field(path, n):
     if '(' in b: return [[float(x) for x in g.split()] for g in re.findall(r'\(([^()]*)\)', b)]
     return [[float(x)] for x in b.split()]
 
-def run(binp, d, h, parallel):
-    write_case(d, h, parallel)
+def run(binp, d, h, parallel, scheme='Gauss upwind'):
+    write_case(d, h, parallel, scheme)
     tools = ['blockGrid'] if parallel else ['blockGrid', 'cutCells', 'mergeCells']
     t0 = time.time()
     for tool in tools + ['solveGranular']:
@@ -139,23 +145,13 @@ def run(binp, d, h, parallel):
 def order(a, b, ha, hb):
     return math.log(a / b) / math.log(ha / hb)
 
-def main():
-    binp, work = sys.argv[1], sys.argv[2]
-    hs = [float(x) for x in sys.argv[3:]] or [0.1, 0.05, 0.025, 0.0125]
-    res = []
-    for h in hs:
-        c = run(binp, os.path.join(work, 'inclined_%g' % h), h, False)
-        p = run(binp, os.path.join(work, 'parallel_%g' % h), h, True)
-        c['du'] = abs(c['umax'] - p['umax'])
-        c['upar'] = p['umax']
-        res.append((h, c))
-    print('Periodic inclined channel, slope %d/%d, multilinear, M_V = 1/2, steady state t = 2' % (P, Q))
-    print('W = %g, g = %g along the channel, rho0 = 1, mu = %g, RsT = 6; exact u_max = %.5f' % (W, G, MU, G * W * W / (8 * MU)))
-    print()
-    print('Table 5.1, density errors (exact rho = 1); thesis values in brackets')
+def tables(res, label, thesis):
+    """Tables 5.1 and 5.2 of one scheme; the orders beside the thesis's."""
+    print('Table 5.1, density errors (exact rho = 1), %s; thesis values (upwind) in brackets' % label)
     print('  h        cells  L2          order  (thesis L2, order)     L1          order  Linf        order  (thesis Linf, order)  time')
     prev = None
     orders = []
+    f = lambda v: '%6.3f' % v if v is not None else '     -'
     for h, c in res:
         th = THESIS_T51.get(h)
         o2 = oi = o1 = tho2 = thoi = None
@@ -167,14 +163,14 @@ def main():
                 thoi = order(THESIS_T51[ph][1], th[1], ph, h)
                 orders.append(('L2 density', h, o2, tho2))
                 orders.append(('Linf density', h, oi, thoi))
-        f = lambda v: '%6.3f' % v if v is not None else '     -'
         print('  %-7g  %5d  %.4e  %s  (%s, %s)  %.4e  %s  %.4e  %s  (%s, %s)  %5.1f s%s' % (
-            h, c['n'], c['l2'], f(o2), '%.3e' % th[0] if th else '-', f(tho2), c['l1'], f(o1), c['li'], f(oi),
-            '%.3e' % th[1] if th else '-', f(thoi), c['secs'],
-            '  (%d unmerged cells)' % c['unresolved'] if c['unresolved'] else ''))
+            h, c['n'], c['l2'], f(o2), '%.3e' % th[0] if th and thesis else '-', f(tho2 if thesis else None),
+            c['l1'], f(o1), c['li'], f(oi), '%.3e' % th[1] if th and thesis else '-', f(thoi if thesis else None),
+            c['secs'], '  (%d unmerged cells)' % c['unresolved'] if c['unresolved'] else ''))
         prev = (h, c)
     print()
-    print('Table 5.2, |u_max - u_max,parallel| (parallel channel on a grid-aligned grid); thesis in brackets')
+    print('Table 5.2, |u_max - u_max,parallel| (parallel channel on a grid-aligned grid), %s; thesis (upwind) in '
+          'brackets' % label)
     print('  h        u_max     u_max,par  error       order  (thesis error, order)')
     prev = None
     for h, c in res:
@@ -185,11 +181,46 @@ def main():
             if h in THESIS_T52 and ph in THESIS_T52:
                 tho = order(THESIS_T52[ph], THESIS_T52[h], ph, h)
                 orders.append(('u_max', h, o, tho))
-        f = lambda v: '%6.3f' % v if v is not None else '     -'
         print('  %-7g  %.5f   %.5f    %.4e  %s  (%s, %s)' % (h, c['umax'], c['upar'], c['du'], f(o),
-              '%.3e' % THESIS_T52[h] if h in THESIS_T52 else '-', f(tho)))
+              '%.3e' % THESIS_T52[h] if h in THESIS_T52 and thesis else '-', f(tho if thesis else None)))
         prev = (h, c)
     print()
+    return orders
+
+def side_by_side(res):
+    """Each scheme's L2, Linf and u_max errors at each h, with orders."""
+    names = [k for k, _ in SCHEMES]
+    print('Upwind against limitedLinear 1 (orders between successive h in brackets)')
+    print('  h        ' + '  '.join('%-44s' % ('%s: L2, Linf, u_max error' % k) for k in names))
+    for i, h in enumerate(res[names[0]]):
+        h = h[0]
+        cols = []
+        for k in names:
+            c = res[k][i][1]
+            o = lambda key: (' (%5.2f)' % order(res[k][i - 1][1][key], c[key], res[k][i - 1][0], h)
+                             if i and c[key] > 0 and res[k][i - 1][1][key] > 0 else '        ')
+            cols.append('%.3e%s %.3e%s %.3e%s' % (c['l2'], o('l2'), c['li'], o('li'), c['du'], o('du')))
+        print('  %-7g  %s' % (h, '  '.join(cols)))
+    print()
+
+def main():
+    binp, work = sys.argv[1], sys.argv[2]
+    hs = [float(x) for x in sys.argv[3:]] or [0.1, 0.05, 0.025, 0.0125]
+    res = {k: [] for k, _ in SCHEMES}
+    for h in hs:
+        p = run(binp, os.path.join(work, 'parallel_%g' % h), h, True)
+        for k, scheme in SCHEMES:
+            tag = '' if k == 'upwind' else '_' + scheme.split()[1]
+            c = run(binp, os.path.join(work, 'inclined%s_%g' % (tag, h)), h, False, scheme)
+            c['du'] = abs(c['umax'] - p['umax'])
+            c['upar'] = p['umax']
+            res[k].append((h, c))
+    print('Periodic inclined channel, slope %d/%d, multilinear, M_V = 1/2, steady state t = 2' % (P, Q))
+    print('W = %g, g = %g along the channel, rho0 = 1, mu = %g, RsT = 6; exact u_max = %.5f' % (W, G, MU, G * W * W / (8 * MU)))
+    print()
+    orders = tables(res['upwind'], 'divSchemes Gauss upwind', True)
+    tables(res['limitedLinear 1'], 'divSchemes Gauss limitedLinear 1', False)
+    side_by_side(res)
     nfail = 0
     for name, h, o, t in orders:
         ok = o is not None and abs(o - t) <= 0.15

@@ -1,0 +1,237 @@
+/*
+** hydro.c: the well-balanced face weights and gravity vectors (hydro.h).
+**
+** A source's position is taken at its periodic image nearest the face
+** centre: the translations of the cyclic patches (each patch's own, so
+** both directions) are applied one at a time while one brings the point
+** closer, which also finds an image two translations away (a corner of a
+** box periodic in two directions).  Sources lie within a stencil's reach
+** of their face, far less than half a period, so the nearest image is the
+** one the interpolation used.
+**
+** The boundary rows solve their least-squares problem in closed form (two
+** constraints, sum and potential, over the owner and its face
+** neighbours); a row is kept only while sum |c_j| <= 3, the bound
+** interp_lin.c puts on its corrected rows, so that a nearly flat
+** neighbourhood does not turn a wall pressure into a difference of large
+** numbers.
+*/
+#include "hydro.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mem.h"
+
+enum { HYDRO_MAXTRANS = 6, HYDRO_MAXNB = 64 };
+#define HYDRO_MAXL1 3.0   /* largest sum |c_j| of a boundary row */
+
+typedef struct Images {
+    int n;
+    double T[HYDRO_MAXTRANS][3];
+} Images;
+
+static void images_init(Images *im, const FvMesh *f)
+{
+    const Mesh *m = f->m;
+    im->n = 0;
+    for (int p = 0; p < m->npatches && im->n < HYDRO_MAXTRANS; p++) {
+        const Patch *pa = &m->patches[p];
+        if (pa->size == 0 || pa->start < f->ninternal || f->cyc_face[pa->start - f->ninternal] < 0) continue;
+        fvmesh_cyclic_shift(f, pa->start, im->T[im->n++]);
+    }
+}
+
+static double dist2(const double p[3], const double x[3])
+{
+    return (p[0] - x[0]) * (p[0] - x[0]) + (p[1] - x[1]) * (p[1] - x[1]) + (p[2] - x[2]) * (p[2] - x[2]);
+}
+
+/* Position of stencil source s (a cell's node, or a boundary face's
+   centre) at its periodic image nearest x. */
+static void source_at(const Images *im, const FvMesh *f, int s, const double x[3], double p[3])
+{
+    const double *p0 = s < f->ncells ? f->node + 3 * s : f->m->face_centre + 3 * (f->ninternal + s - f->ncells);
+    memcpy(p, p0, 3 * sizeof *p);
+    double best = dist2(p, x);
+    for (int moved = 1; moved;) {
+        moved = 0;
+        for (int t = 0; t < im->n; t++) {
+            double q[3] = {p[0] - im->T[t][0], p[1] - im->T[t][1], p[2] - im->T[t][2]}, d = dist2(q, x);
+            if (d < best) {
+                best = d;
+                memcpy(p, q, sizeof q);
+                moved = 1;
+            }
+        }
+    }
+}
+
+/* a.(x - y): the potential difference (over RsT) from y to x. */
+static double potential(const double a[3], const double x[3], const double y[3])
+{
+    return a[0] * (x[0] - y[0]) + a[1] * (x[1] - y[1]) + a[2] * (x[2] - y[2]);
+}
+
+/* exp(a.(x - y)): the hydrostatic profile from y to x. */
+static double profile(const double a[3], const double x[3], const double y[3]) { return exp(potential(a, x, y)); }
+
+/* The weights of every face's CENTRE row; a cyclic face's partner built
+   first lends its weights, as the stencil's rows are copies too. */
+static void face_weights(Hydro *h, const Images *im)
+{
+    const FvMesh *f = h->f;
+    const Stencil *s = &h->ip->face;
+    h->off = mem_alloc(sizeof(int) * ((size_t)f->nfaces + 1));
+    h->off[0] = 0;
+    for (int i = 0; i < f->nfaces; i++) {
+        int r = interp_row(i, INTERP_CENTRE);
+        h->off[i + 1] = h->off[i] + s->off[r + 1] - s->off[r];
+    }
+    h->w = mem_alloc(sizeof(double) * ((size_t)h->off[f->nfaces] + 1));
+    for (int i = 0; i < f->nfaces; i++) {
+        int r = interp_row(i, INTERP_CENTRE), g = i >= f->ninternal ? f->cyc_face[i - f->ninternal] : -1;
+        double *w = h->w + h->off[i];
+        if (g >= 0 && g < i) {
+            memcpy(w, h->w + h->off[g], sizeof(double) * (size_t)(h->off[i + 1] - h->off[i]));
+            continue;
+        }
+        const double *xf = f->m->face_centre + 3 * i;
+        for (int k = s->off[r]; k < s->off[r + 1]; k++) {
+            double p[3];
+            source_at(im, f, s->src[k], xf, p);
+            w[k - s->off[r]] = s->w[k] * profile(h->a, xf, p);
+        }
+    }
+}
+
+/* Each cell's profile integrated over its faces. */
+static void gravity_vectors(Hydro *h)
+{
+    const FvMesh *f = h->f;
+    const Mesh *m = f->m;
+    h->grav = mem_calloc(3 * ((size_t)f->ncells + 1), sizeof(double));
+    for (int i = 0; i < f->nfaces; i++) {
+        const double *xf = m->face_centre + 3 * i, *S = m->face_area + 3 * i, *xo = f->node + 3 * m->owner[i];
+        double eo = expm1(potential(h->a, xf, xo));
+        for (int k = 0; k < 3; k++) h->grav[3 * m->owner[i] + k] += eo * S[k];
+        if (i >= f->ninternal) continue;
+        const double *xn = f->node + 3 * m->neighbour[i];
+        double en = expm1(potential(h->a, xf, xn));
+        for (int k = 0; k < 3; k++) h->grav[3 * m->neighbour[i] + k] -= en * S[k];
+    }
+}
+
+/* Cell c and its face neighbours (across internal and cyclic faces), each
+   once, with their nodes seen from c (a cyclic neighbour moved by the
+   translation); returns how many, at most HYDRO_MAXNB. */
+static int neighbourhood(const FvMesh *f, int c, int *cell, double (*x)[3])
+{
+    const Mesh *m = f->m;
+    int n = 1;
+    cell[0] = c;
+    memcpy(x[0], f->node + 3 * c, sizeof x[0]);
+    for (int j = m->cell_off[c]; j < m->cell_off[c + 1] && n < HYDRO_MAXNB; j++) {
+        int i = m->cell_faces[j], nb;
+        double y[3];
+        if (f->empty_face[i]) continue;
+        if (i < f->ninternal) {
+            nb = m->owner[i] == c ? m->neighbour[i] : m->owner[i];
+            memcpy(y, f->node + 3 * nb, sizeof y);
+        } else if ((nb = fvmesh_across(f, i, y)) < 0) {
+            continue;
+        }
+        int dup = 0;
+        for (int q = 0; q < n; q++) dup |= cell[q] == nb;
+        if (dup) continue;
+        cell[n] = nb;
+        memcpy(x[n++], y, sizeof y);
+    }
+    return n;
+}
+
+/* The weights c_j (summing to 1) of the owner P's neighbourhood whose
+   nodes' mean potential is the face's, sum_j c_j a.x_j = a.x_b: the
+   smallest change (sum of squares) of c = (1 at P, 0 elsewhere), i.e.
+   c_j = [j = P] + lambda + mu psi_j, psi_j = a.(x_j - x_P).  0 when the
+   neighbourhood does not spread in potential or the weights grow large
+   (sum |c_j| > HYDRO_MAXL1): the caller keeps the owner alone. */
+static int equipotential(int n, const double *psi, double phi, double *c)
+{
+    double s1 = 0, s2 = 0, l1 = 0;
+    for (int j = 0; j < n; j++) {
+        s1 += psi[j];
+        s2 += psi[j] * psi[j];
+    }
+    double D = s2 - s1 * s1 / n;
+    if (n < 2 || !(D > 1e-10 * (s2 + phi * phi))) return 0;
+    double mu = phi / D, lambda = -mu * s1 / n;
+    for (int j = 0; j < n; j++) {
+        c[j] = (j == 0) + lambda + mu * psi[j];
+        l1 += fabs(c[j]);
+    }
+    return l1 <= HYDRO_MAXL1;
+}
+
+/* The row of boundary face b: its owner's neighbourhood at the face's
+   potential, each node carried to the face along its profile. */
+static void wall_row(Hydro *h, int b)
+{
+    const FvMesh *f = h->f;
+    int i = f->ninternal + b, P = f->m->owner[i], cell[HYDRO_MAXNB], n = 1;
+    const double *xb = f->m->face_centre + 3 * i, *xp = f->node + 3 * P, *a = h->a;
+    double x[HYDRO_MAXNB][3], psi[HYDRO_MAXNB], c[HYDRO_MAXNB] = {1};
+    double phi = potential(a, xb, xp);
+    cell[0] = P;
+    memcpy(x[0], xp, sizeof x[0]);
+    if (phi != 0 && !f->empty_face[i] && f->cyc_face[b] < 0) {
+        int m = neighbourhood(f, P, cell, x);
+        for (int j = 0; j < m; j++) psi[j] = potential(a, x[j], xp);
+        if (equipotential(m, psi, phi, c)) n = m;
+        else c[0] = 1;
+    }
+    for (int j = 0; j < n; j++) stencil_add(&h->wall, cell[j], c[j] * profile(a, xb, x[j]));
+    stencil_end_row(&h->wall);
+}
+
+void hydro_init(Hydro *h, const FvMesh *f, const Interp *ip, const double g[3], double RsT)
+{
+    memset(h, 0, sizeof *h);
+    h->f = f;
+    h->ip = ip;
+    for (int k = 0; k < 3; k++) h->a[k] = g[k] / RsT;
+    Images im;
+    images_init(&im, f);
+    face_weights(h, &im);
+    gravity_vectors(h);
+    stencil_init(&h->wall);
+    for (int b = 0; b < f->nboundary; b++) wall_row(h, b);
+}
+
+void hydro_free(Hydro *h)
+{
+    free(h->off);
+    free(h->w);
+    stencil_free(&h->wall);
+    free(h->grav);
+    memset(h, 0, sizeof *h);
+}
+
+double hydro_face(const Hydro *h, int i, const double *pc, const double *pb)
+{
+    const Stencil *s = &h->ip->face;
+    int r = interp_row(i, INTERP_CENTRE), nc = h->f->ncells;
+    const double *w = h->w + h->off[i] - s->off[r];
+    double v = 0;
+    for (int k = s->off[r]; k < s->off[r + 1]; k++) {
+        int q = s->src[k];
+        v += w[k] * (q < nc ? pc[q] : pb[q - nc]);
+    }
+    return v;
+}
+
+double hydro_boundary(const Hydro *h, int b, const double *pc)
+{
+    return stencil_apply(&h->wall, b, h->f->ncells, pc, NULL);
+}

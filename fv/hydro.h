@@ -1,0 +1,92 @@
+/*
+** hydro.h: a well-balanced face pressure and gravity force for an
+** isothermal gas p = RsT rho under uniform gravity g (doc/theory.md,
+** "Well-balanced pressure and gravity").
+**
+** The continuous rest state is rho = C exp(a.x), a = g / RsT: grad p =
+** rho g.  Written with its equilibrium variable w = rho exp(-a.x), which
+** is constant at rest (hydrostatic reconstruction with equilibrium
+** variables: Kaeppeli & Mishra 2014, "Well-balanced schemes for the Euler
+** equations with gravitation", J. Comput. Phys. 259), every cell C
+** carries its own hydrostatic profile through its node x_C:
+**
+**   p_C(x) = RsT rho_C exp(a.(x - x_C)).
+**
+** Face pressure: each source s of the face's CENTRE row (interp.h; the two
+** cells of a Cartesian face, the stencil elsewhere) is reconstructed to
+** the face centre x_f along its own profile before the weights act,
+**
+**   p_f = sum_s w_s exp(a.(x_f - x_s)) p_s,
+**
+** x_s the source's node (a boundary source: its face centre) at the
+** periodic image nearest x_f, so only displacements of the order of the
+** stencil enter, never exp(a.x) itself (no overflow on large domains; on
+** a cyclic face the node across is moved by the translation).  The
+** partner of a cyclic face repeats that face's weights, so the two share
+** p_f and the pressure force conserves momentum as before.
+**
+** Boundary face b whose pressure comes from the cells (a wall, a zero
+** gradient): from the owner P and its face neighbours j,
+**
+**   p_b = sum_j c_j exp(a.(x_b - x_j)) p_j,   sum_j c_j = 1,
+**   sum_j c_j a.x_j = a.x_b,
+**
+** c the smallest change (least squares) of the owner alone (c_P = 1) that
+** puts the weighted nodes at the face's potential.  Any c summing to one
+** keeps the rest state; the potential condition also keeps a pressure
+** that is uniform along gravity to O((a h)^2) where the owner's profile
+** alone, p_P exp(a.(x_b - x_P)), is off by a.(x_b - x_P) = O(a h): the
+** inclined channel, whose gravity along the walls is carried by the wall
+** shear, not by the pressure, lost a third of its density accuracy that
+** way.  With a = 0, or a neighbourhood that does not spread in potential,
+** or weights beyond sum |c_j| = 3, c is the owner alone.
+**
+** Gravity: the force on cell C is its own profile integrated over its
+** closed surface (every face, empty ones too, S_f outward),
+**
+**   F_C = sum_f p_C(x_f) S_f = RsT rho_C sum_f expm1(a.(x_f - x_C)) S_f
+**
+** (sum_f S_f = 0), which is rho_C g V_C to second order (divergence
+** theorem) and equals sum_f p_f S_f exactly when rho_C exp(-a.x_C) is one
+** constant: the discrete rest state of every grid.  Since the weights of
+** a row sum to one, p_f = RsT C exp(a.x_f) on every face there, whatever
+** the stencil.  With a = 0 the weights are the CENTRE row's, bit for
+** bit, and the gravity vectors are zero.
+**
+** Memory: one double per entry of the CENTRE rows (the face stencil
+** holds three rows per face), nfaces + 1 offsets, three doubles per cell
+** and a row of the owner's neighbourhood per boundary face.
+*/
+#ifndef KIESEL_HYDRO_H
+#define KIESEL_HYDRO_H
+
+#include "fvmesh.h"
+#include "interp.h"
+
+typedef struct Hydro {
+    const FvMesh *f;
+    const Interp *ip;
+    double a[3];       /* g / RsT */
+    int *off;          /* nfaces + 1: face i's weights are w[off[i] ..
+                          off[i+1]-1], one per source of its CENTRE row, in
+                          the row's order */
+    double *w;         /* the CENTRE rows' weights times exp(a.(x_f - x_s)) */
+    Stencil wall;      /* nboundary rows: the pressure of boundary face b
+                          from the cells (walls, zero gradient) */
+    double *grav;      /* 3 ncells: sum_f expm1(a.(x_f - x_C)) S_f */
+} Hydro;
+
+/* The weights of the grid f and the face stencils ip for gravity g and
+   p = RsT rho (g = 0: today's face weights, no gravity). */
+void hydro_init(Hydro *h, const FvMesh *f, const Interp *ip, const double g[3], double RsT);
+void hydro_free(Hydro *h);
+
+/* p_f of face i from the cell pressures pc (ncells) and the boundary
+   pressures pb (one per boundary face). */
+double hydro_face(const Hydro *h, int i, const double *pc, const double *pb);
+
+/* The pressure of boundary face b taken from the cells (a wall, a zero
+   gradient) from the cell pressures pc. */
+double hydro_boundary(const Hydro *h, int b, const double *pc);
+
+#endif
