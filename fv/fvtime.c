@@ -76,7 +76,8 @@ static int write_due(TimeLoop *t, double elapsed)
 
 void timeloop_advance(TimeLoop *t, double elapsed)
 {
-    if (t->c->writeControl == WRITE_ADJUSTABLE) adjust_to_write(t);
+    /* as OpenFOAM, only a step that adapts is fitted to the write times */
+    if (t->c->adjustTimeStep && t->c->writeControl == WRITE_ADJUSTABLE) adjust_to_write(t);
     t->dt0 = t->dt;
     t->value += t->dt;
     t->index++;

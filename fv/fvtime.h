@@ -1,14 +1,15 @@
 /*
 ** fvtime.h: the time loop of a solver in OpenFOAM's rules: the time step
 ** from the Courant number (adjustTimeStep, maxCo, maxDeltaT), time steps
-** shortened to land on write times (writeControl adjustableRunTime), when
+** shortened to land on write times (writeControl adjustableRunTime with
+** adjustTimeStep on; a fixed step is never changed, as in OpenFOAM), when
 ** to write (timeStep, runTime, adjustableRunTime, cpuTime, clockTime), and
 ** when to stop (endTime, stopAt).  Pure arithmetic on a Control
 ** (common/runtime.h): the frame does the printing, the solver the physics.
 **
 ** OpenFOAM's formulas, so that a case behaves as its users expect:
 **   setDeltaT:  f = maxCo / Co;  dt <- min(min(f, 1 + 0.1 f, 1.2) dt, maxDeltaT)
-**   adjustDeltaT (adjustableRunTime): the steps left to the next write
+**   adjustDeltaT (adjustableRunTime, adjustTimeStep on): the steps left to the next write
 **     time are rounded up and dt shared among them, changing by at most
 **     a factor 2 up and 5 down;
 **   a write happens when the time passes the next multiple of
@@ -44,7 +45,8 @@ void timeloop_courant(TimeLoop *t, double co);
    and no stop requested)? */
 int timeloop_running(const TimeLoop *t);
 
-/* Takes the step: shortens dt onto the next write time (adjustableRunTime),
+/* Takes the step: shortens dt onto the next write time (adjustableRunTime
+   with adjustTimeStep on),
    advances time and index, and sets write_now; elapsed is the CPU or wall
    time since the start in seconds, for cpuTime/clockTime writes (0
    otherwise). */

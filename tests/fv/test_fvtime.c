@@ -48,6 +48,25 @@ TEST(adjustable_writes)
     EXPECT(steps >= 34 && steps <= 40, "%d steps for dt about 0.03", steps);
 }
 
+/* adjustableRunTime with adjustTimeStep off: the step stays deltaT (OpenFOAM
+   fits steps to write times only when they adapt); a write comes with
+   the first step past each multiple of 0.1. */
+TEST(adjustable_fixed_step)
+{
+    Control c = control(WRITE_ADJUSTABLE, 0.1, 1.0, 0, 0.5, 1e15);
+    TimeLoop t;
+    timeloop_init(&t, &c, 0, 0, 0.03);
+    int nw = 0, steps = 0;
+    while (timeloop_running(&t)) {
+        timeloop_advance(&t, 0);
+        steps++;
+        EXPECT(t.dt == 0.03, "step %d: dt %.17g", steps, t.dt);
+        nw += t.write_now;
+    }
+    EXPECT(steps == 33, "%d steps", steps);
+    EXPECT(nw == 10, "%d writes", nw);
+}
+
 /* setDeltaT: Co = 0 grows dt by 1.2 a step up to maxDeltaT; Co = 2 maxCo
    takes f = 0.5, so dt halves. */
 TEST(courant_control)
@@ -128,6 +147,7 @@ TEST(stop_next_write)
 int main(void)
 {
     RUN(adjustable_writes);
+    RUN(adjustable_fixed_step);
     RUN(courant_control);
     RUN(timestep_writes);
     RUN(runtime_writes);

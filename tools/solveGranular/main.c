@@ -224,8 +224,8 @@ int main(int argc, char **argv)
     Interp ip;
     Start st;
     memset(&r, 0, sizeof r);
+    catch_signals(); /* before the set-up: a signal then stops before the first step */
     read_case(&r, &a, &ip, &fm, &st);
-    catch_signals();
     long steps = run(&a, &r, &st);
     if (args_get(&a, &tool, "-profile")) print_profile(&r, steps);
     log_end(&a);
