@@ -22,6 +22,7 @@
 #include "mem.h"
 #include "merge.h"
 #include "mesh.h"
+#include "vgrid.h"
 
 static inline void fixture_mesh(Mesh *m, double *const x[3], const int n[3])
 {
@@ -123,6 +124,35 @@ static inline void fixture_cut(Mesh *out, const Mesh *grid, const char *text, in
         mesh_free(&cutm);
     }
     fixture_geo_free(&G);
+}
+
+/* The Voronoi grid of the grid's box and the geometry of text
+   (fixture_geo's form) with voronoiGrid's default seeds, into out.  A
+   failure ends the test program. */
+static inline void fixture_voronoi(Mesh *out, const Mesh *grid, const char *text)
+{
+    FixtureGeo G;
+    if (fixture_geo(&G, text)) exit(1);
+    SeedOpts so;
+    seeds_opts_default(&so);
+    VGridStats st;
+    Err e;
+    if (vgrid_mesh(grid, &G.g, &so, out, &st, &e)) {
+        printf("vgrid_mesh: %s\n", e.msg);
+        exit(1);
+    }
+    fixture_geo_free(&G);
+}
+
+/* The unit square, N x N cells one cell (1/N) thick, with its cell faces
+   and geometry. */
+static inline void fixture_square(Mesh *m, int N)
+{
+    int n[3] = {N, N, 1};
+    double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1.0 / N};
+    fixture_block(m, n, lo, hi, 2);
+    mesh_cell_faces(m);
+    mesh_geometry(m);
 }
 
 #endif

@@ -56,19 +56,10 @@ static double smooth(const double *x) { return sin(PI * x[0]) * cos(PI * x[1]) +
 /* f = -mu lap(smooth) */
 static double smooth_src(const double *x) { return MU * 2 * PI * PI * sin(PI * x[0]) * cos(PI * x[1]); }
 
-static void block2d(Mesh *m, int N)
-{
-    int n[3] = {N, N, 1};
-    double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1.0 / N};
-    fixture_block(m, n, lo, hi, 2);
-    mesh_cell_faces(m);
-    mesh_geometry(m);
-}
-
 static void disc_grid(Mesh *out, int N)
 {
     Mesh grid;
-    block2d(&grid, N);
+    fixture_square(&grid, N);
     fixture_cut(out, &grid, DISC, 1, NULL);
     mesh_free(&grid);
 }
@@ -147,7 +138,7 @@ static void prob_free(Prob *P)
 TEST(quadratic_faces)
 {
     Prob P;
-    block2d(&P.m, 10);
+    fixture_square(&P.m, 10);
     prob_init(&P, INTERP_SHEPARD, quad);
     double *u = mem_alloc(sizeof(double) * (size_t)P.f.ncells), *flux = mem_alloc(sizeof(double) * (size_t)P.f.nfaces);
     for (int c = 0; c < P.f.ncells; c++) u[c] = quad(P.f.node + 3 * c);
@@ -274,7 +265,7 @@ static void table(const char *title, void (*make)(Mesh *, int), int method, doub
 TEST(block_order)
 {
     double order[2], first[2], last[2];
-    table("2-D block grid, Dirichlet walls", block2d, INTERP_SHEPARD, order, first, last);
+    table("2-D block grid, Dirichlet walls", fixture_square, INTERP_SHEPARD, order, first, last);
     EXPECT(order[0] >= 1.9 && order[1] >= 1.9, "observed orders %.2f (L1), %.2f (Linf)", order[0], order[1]);
 }
 

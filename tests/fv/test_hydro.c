@@ -21,7 +21,6 @@
 #include "hydro.h"
 #include "interp.h"
 #include "test.h"
-#include "vgrid.h"
 
 #include <math.h>
 
@@ -49,17 +48,7 @@ static void rotbox(Mesh *out, int N, int voronoi)
         mesh_free(&grid);
         return;
     }
-    FixtureGeo G;
-    if (fixture_geo(&G, ROTBOX)) exit(1);
-    SeedOpts so;
-    seeds_opts_default(&so);
-    VGridStats st;
-    Err e;
-    if (vgrid_mesh(&grid, &G.g, &so, out, &st, &e)) {
-        printf("vgrid_mesh: %s\n", e.msg);
-        exit(1);
-    }
-    fixture_geo_free(&G);
+    fixture_voronoi(out, &grid, ROTBOX);
     mesh_free(&grid);
 }
 

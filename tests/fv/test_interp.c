@@ -21,7 +21,6 @@
 #include "interp.h"
 #include "merge.h"
 #include "test.h"
-#include "vgrid.h"
 
 #include <math.h>
 
@@ -56,17 +55,7 @@ static void voronoi_grid(Mesh *out, int N, const char *geo)
 {
     Mesh grid;
     unit_block(&grid, N, 2);
-    FixtureGeo G;
-    if (fixture_geo(&G, geo)) exit(1);
-    SeedOpts so;
-    seeds_opts_default(&so);
-    VGridStats st;
-    Err e;
-    if (vgrid_mesh(&grid, &G.g, &so, out, &st, &e)) {
-        printf("vgrid_mesh: %s\n", e.msg);
-        exit(1);
-    }
-    fixture_geo_free(&G);
+    fixture_voronoi(out, &grid, geo);
     mesh_free(&grid);
 }
 

@@ -53,19 +53,10 @@ static const double PI = 3.14159265358979323846;
 static const char *const DISC =
     "d { flow outside; shape cylinder; point1 (0.5 0.5 -1); point2 (0.5 0.5 1); radius 0.27; }";
 
-static void block2d(Mesh *m, int N)
-{
-    int n[3] = {N, N, 1};
-    double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1.0 / N};
-    fixture_block(m, n, lo, hi, 2);
-    mesh_cell_faces(m);
-    mesh_geometry(m);
-}
-
 static void disc_grid(Mesh *out, int N)
 {
     Mesh grid;
-    block2d(&grid, N);
+    fixture_square(&grid, N);
     fixture_cut(out, &grid, DISC, 1, NULL);
     mesh_free(&grid);
 }
@@ -164,7 +155,7 @@ static void gradient_on(Mesh *m, const char *what)
 TEST(gradient)
 {
     Mesh m;
-    block2d(&m, 24);
+    fixture_square(&m, 24);
     gradient_on(&m, "block 24^2");
     disc_grid(&m, 48);
     gradient_on(&m, "disc, cut and merged, 48^2");
@@ -260,12 +251,12 @@ static void order_table(const char *title, void (*make)(Mesh *, int), const Prof
 TEST(block_order)
 {
     double ord[3][3], e[3][3][3];
-    order_table("2-D block grid", block2d, &EXP, ord, e);
+    order_table("2-D block grid", fixture_square, &EXP, ord, e);
     EXPECT(fabs(ord[0][0] - 1) <= 0.1 && fabs(ord[0][1] - 1) <= 0.1, "upwind: orders %.2f %.2f", ord[0][0], ord[0][1]);
     for (int s = 1; s < 3; s++)
         EXPECT(ord[s][0] >= 1.9 && ord[s][1] >= 1.9, "%s: orders %.2f (L1) %.2f (Linf)", NAMES[s], ord[s][0],
                ord[s][1]);
-    order_table("2-D block grid", block2d, &SIN, ord, e);
+    order_table("2-D block grid", fixture_square, &SIN, ord, e);
     for (int s = 1; s < 3; s++) EXPECT(ord[s][0] >= 1.4, "%s with extrema: L1 order %.2f", NAMES[s], ord[s][0]);
 }
 
@@ -400,7 +391,7 @@ static void step_on(Mesh *m, const char *what, int nsteps)
 TEST(bounded_step)
 {
     Mesh m;
-    block2d(&m, 64);
+    fixture_square(&m, 64);
     step_on(&m, "block 64^2", 100);
     disc_grid(&m, 64);
     step_on(&m, "disc 64^2", 100);
@@ -475,7 +466,7 @@ static void empty_on(Mesh *m, const char *what)
 TEST(empty_cell)
 {
     Mesh m;
-    block2d(&m, 32);
+    fixture_square(&m, 32);
     empty_on(&m, "block 32^2");
     disc_grid(&m, 32);
     empty_on(&m, "disc 32^2");
