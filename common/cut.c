@@ -100,6 +100,8 @@
 #define DEGENERATE 1e-12  /* a cell piece below this fraction of its cell is dropped */
 #define OFFSET     (4 * EXTRA_SNAP) /* moved edge copies, in snap distances (offset_cut) */
 #define PROBE      1000  /* corner probes, in snap distances (local_fluid) */
+#define SKEW       0.6180339887498949 /* a cell's edge copies: second offset / first (side_point) */
+#define END_RATE   1.2   /* a crossing closes on an end: distance ratio per doubled move (closes_on_end) */
 
 typedef struct CutPt {
     int64_t key;    /* 3 v + axis, -1: empty slot */
@@ -580,6 +582,67 @@ static int probe_differs(const Ctx *c, int64_t v)
     return 0;
 }
 
+/* Does vertex v lie on the surface to snap x the diagonal of its largest
+   cell, as far as |level| (at most the distance) tells? */
+static int level_near(const Ctx *c, int64_t v)
+{
+    int ijk[3];
+    vertex_ijk(c, v, ijk);
+    double x[3], d2 = 0;
+    for (int a = 0; a < 3; a++) {
+        int lo = ijk[a] > 0 ? ijk[a] - 1 : 0, hi = ijk[a] < c->n[a] ? ijk[a] + 1 : c->n[a];
+        double w = fmax(c->x[a][ijk[a]] - c->x[a][lo], c->x[a][hi] - c->x[a][ijk[a]]);
+        d2 += w * w;
+        x[a] = c->x[a][ijk[a]];
+    }
+    float *lv = &c->level[v];
+    if (*lv < 0) *lv = (float)fabs(geometry_level(c->g, x));
+    return *lv <= 2 * c->snap * sqrt(d2);
+}
+
+/* Is vertex v an end of a grid edge whose ends differ? */
+static int mixed_end(const Ctx *c, int64_t v)
+{
+    int ijk[3];
+    vertex_ijk(c, v, ijk);
+    for (int a = 0; a < 3; a++)
+        for (int dir = -1; dir <= 1; dir += 2)
+            if (ijk[a] + dir >= 0 && ijk[a] + dir < c->nv[a] && !c->cls[v + dir * c->sv[a]] != !c->cls[v]) return 1;
+    return 0;
+}
+
+/* The search of probe_corners: vertices seen, and the queue of those
+   on the surface whose neighbours are still to be looked at. */
+typedef struct Probe {
+    char *seen;
+    int64_t *queue;
+    size_t nq, qcap;
+} Probe;
+
+static void probe_push(Probe *P, int64_t v)
+{
+    P->seen[v] = 1;
+    mem_grow((void **)&P->queue, &P->qcap, P->nq + 1, sizeof *P->queue);
+    P->queue[P->nq++] = v;
+}
+
+/* Vertex w joins the vertices on the surface when its cells' probes
+   disagree (near: only when it lies on the surface to the snap distance
+   as well): a fluid one joins the snapping list, a solid one is marked. */
+static size_t probe_try(Ctx *c, Probe *P, int64_t w, int near, int64_t **list, size_t nl, size_t *lcap)
+{
+    if (P->seen[w] || (near && !level_near(c, w)) || !probe_differs(c, w)) return nl;
+    if (c->cls[w] == 1) {
+        c->cls[w] = 2;
+        mem_grow((void **)list, lcap, nl + 1, sizeof **list);
+        (*list)[nl++] = w;
+    } else {
+        c->onsurf[w] = 1;
+    }
+    probe_push(P, w);
+    return nl;
+}
+
 /* Vertices on the surface that no crossing meets and no diagonal shows:
    a corner of the geometry whose two faces lie in the grid planes through
    the vertex (the rim of a slab thinner than a cell on a grid line, a
@@ -587,41 +650,39 @@ static int probe_differs(const Ctx *c, int64_t v)
    face.  They are searched among the grid neighbours of the vertices
    already known on the surface, outwards while new ones turn up: a fluid
    one joins the snapping list, a solid one is marked; either way each of
-   its cells then judges it by its own probe (local_masks). */
+   its cells then judges it by its own probe (local_masks).  The search
+   starts as well from the ends of edges whose ends differ and their
+   neighbours, those that lie on the surface to the snap distance: a
+   vertex on a cone's rim or a prism's corner is solid for both flow
+   sides (a point on a surface counts as solid), and so has fluid
+   neighbours, and is found by snapping, on one side only; both sides
+   have to find it for their cells to see complementary corners. */
 static size_t probe_corners(Ctx *c, int64_t **list, size_t nl, size_t *lcap)
 {
-    int64_t nvt = c->sv[2] * c->nv[2], *queue = NULL;
-    size_t nq = 0, qcap = 0;
-    char *seen = mem_alloc((size_t)nvt);
-    memset(seen, 0, (size_t)nvt);
+    int64_t nvt = c->sv[2] * c->nv[2];
+    Probe P = {mem_calloc((size_t)nvt, 1), NULL, 0, 0};
     for (int64_t v = 0; v < nvt; v++)
-        if (c->onsurf[v] || c->cls[v] == 2) {
-            seen[v] = 1;
-            mem_grow((void **)&queue, &qcap, nq + 1, sizeof *queue);
-            queue[nq++] = v;
-        }
-    for (size_t h = 0; h < nq; h++) {
+        if (c->onsurf[v] || c->cls[v] == 2) probe_push(&P, v);
+    for (int64_t v = 0; v < nvt; v++) {
+        if (!mixed_end(c, v)) continue;
         int ijk[3];
-        vertex_ijk(c, queue[h], ijk);
+        vertex_ijk(c, v, ijk);
+        nl = probe_try(c, &P, v, 1, list, nl, lcap);
         for (int a = 0; a < 3; a++)
-            for (int dir = -1; dir <= 1; dir += 2) {
-                if (ijk[a] + dir < 0 || ijk[a] + dir >= c->nv[a]) continue;
-                int64_t w = queue[h] + dir * c->sv[a];
-                if (seen[w] || !probe_differs(c, w)) continue;
-                seen[w] = 1;
-                if (c->cls[w] == 1) {
-                    c->cls[w] = 2;
-                    mem_grow((void **)list, lcap, nl + 1, sizeof **list);
-                    (*list)[nl++] = w;
-                } else {
-                    c->onsurf[w] = 1;
-                }
-                mem_grow((void **)&queue, &qcap, nq + 1, sizeof *queue);
-                queue[nq++] = w;
-            }
+            for (int dir = -1; dir <= 1; dir += 2)
+                if (ijk[a] + dir >= 0 && ijk[a] + dir < c->nv[a])
+                    nl = probe_try(c, &P, v + dir * c->sv[a], 1, list, nl, lcap);
     }
-    free(queue);
-    free(seen);
+    for (size_t h = 0; h < P.nq; h++) {
+        int ijk[3];
+        vertex_ijk(c, P.queue[h], ijk);
+        for (int a = 0; a < 3; a++)
+            for (int dir = -1; dir <= 1; dir += 2)
+                if (ijk[a] + dir >= 0 && ijk[a] + dir < c->nv[a])
+                    nl = probe_try(c, &P, P.queue[h] + dir * c->sv[a], 0, list, nl, lcap);
+    }
+    free(P.queue);
+    free(P.seen);
     return nl;
 }
 
@@ -707,6 +768,11 @@ static void snap(Ctx *c)
 
 /* ---- step 4: grid faces ---- */
 
+static const double *ptx(const Ctx *c, int pt)
+{
+    return c->b.points + 3 * (size_t)pt;
+}
+
 /* A repeated point is dropped, keeping the leaf of a cut point that
    falls on a corner (a corner on the surface that is fluid for the cell). */
 static void poly_add(Poly *p, int pt, int leaf)
@@ -719,13 +785,62 @@ static void poly_add(Poly *p, int pt, int leaf)
     p->leaf[p->n++] = leaf;
 }
 
+static int poly_has(const Poly *p, int pt)
+{
+    for (int i = 0; i < p->n; i++)
+        if (p->pt[i] == pt) return 1;
+    return 0;
+}
+
+/* Does polygon p on a grid face normal to a have no area: all its points
+   on one side of the face (a cell that sees two corners fluid while the
+   points of the edges towards its other corners sit on those two)?  The
+   points of a face polygon lie on grid lines, so the test is exact. */
+static int poly_flat(const Ctx *c, int a, const Poly *p)
+{
+    for (int k = 1; k <= 2; k++) {
+        int b = (a + k) % 3, i = 1;
+        while (i < p->n && ptx(c, p->pt[i])[b] == ptx(c, p->pt[0])[b]) i++;
+        if (i == p->n) return 1;
+    }
+    return 0;
+}
+
+/* Inserts into p the point inside face edge q (from corner cv[q] to
+   cv[q+1]) where a side of p runs along the whole edge: both its ends
+   are cut points snapped onto the corners, neither corner fluid for the
+   cell (an edge in a face of one CSG part whose point another part put
+   there).  The faces of the other cells round the edge hold that point,
+   so without it the cell's sides along the edge would not cancel and
+   leave a loop of zero area. */
+static void poly_edge_points(Ctx *c, const int64_t cv[4], const int eax[4], const int64_t elo[4], Poly *p)
+{
+    for (int q = 0; q < 4; q++) {
+        int va = c->vpt[cv[q]], vb = c->vpt[cv[(q + 1) & 3]];
+        if (va < 0 || vb < 0 || p->n >= MAXP) continue;
+        for (int i = 0; i < p->n; i++) {
+            int j = (i + 1) % p->n;
+            if (!((p->pt[i] == va && p->pt[j] == vb) || (p->pt[i] == vb && p->pt[j] == va))) continue;
+            CutPt *e = cut_find(c, 3 * elo[q] + eax[q]);
+            if (!e || e->at >= 0 || poly_has(p, cut_point(c, e))) break;
+            memmove(p->pt + i + 2, p->pt + i + 1, sizeof *p->pt * (size_t)(p->n - i - 1));
+            memmove(p->leaf + i + 2, p->leaf + i + 1, sizeof *p->leaf * (size_t)(p->n - i - 1));
+            p->pt[i + 1] = cut_point(c, e);
+            p->leaf[i + 1] = e->leaf;
+            p->n++;
+            break;
+        }
+    }
+}
+
 /* The marching-squares polygon of the grid face normal to a with base
    vertex v0, normal +a, for the fluid corners in bits (bit q: corner q in
    the order base, +u, +u+v, +v; empty when bits is 0).  An edge's point
    enters wherever one of its ends is fluid: as a cut point when the
    other is not, else as a point on a side of the polygon, so every face
    that holds part of a grid edge holds that edge's point (no hanging
-   points between faces whose cells see the edge differently). */
+   points between faces whose cells see the edge differently); and where
+   a side runs along a whole edge (poly_edge_points). */
 static void face_poly_ms(Ctx *c, int a, int64_t v0, int bits, Poly *p)
 {
     int u = (a + 1) % 3, w = (a + 2) % 3;
@@ -748,14 +863,11 @@ static void face_poly_ms(Ctx *c, int a, int64_t v0, int bits, Poly *p)
         if (p->leaf[0] < 0) p->leaf[0] = p->leaf[p->n - 1];
         p->n--;
     }
+    if (p->n >= 3) poly_edge_points(c, cv, eax, elo, p);
+    if (p->n >= 3 && poly_flat(c, a, p)) p->n = 0;
 }
 
 /* ---- step 5: boundary loops ---- */
-
-static const double *ptx(const Ctx *c, int pt)
-{
-    return c->b.points + 3 * (size_t)pt;
-}
 
 /* Adds the sides of polygon p of a cell, reversed to run against the
    cell's outward normal; out = 1 when p's normal points out of the cell.
@@ -1282,30 +1394,117 @@ static void local_masks(Ctx *c)
 }
 
 
+/* The crossings (coordinates along a, ascending, at most maxn) of the
+   copy of edge (p0, along a to xhi) moved by off, and the classes of its
+   ends, judged snap x (edge) in, as shifted_cut judges them. */
+static int copy_crossings(const Ctx *c, int a, const double p0[3], double xhi, const double off[3], double *xs,
+                          int *leaf, int maxn, int f[2])
+{
+    double q0[3], q1[3], eta = c->snap * (xhi - p0[a]);
+    for (int k = 0; k < 3; k++) q0[k] = p0[k] + off[k];
+    memcpy(q1, q0, sizeof q1);
+    q1[a] = xhi;
+    q0[a] += eta;
+    q1[a] -= eta;
+    f[0] = geometry_fluid(c->g, q0);
+    f[1] = geometry_fluid(c->g, q1);
+    GeoCross cr[8];
+    int k = geometry_crossings(c->g, q0, q1, cr, 8), n = 0;
+    for (int r = 0; r < k && r < 8 && n < maxn; r++, n++) {
+        xs[n] = q0[a] + cr[r].t * (q1[a] - q0[a]);
+        leaf[n] = cr[r].leaf;
+    }
+    return n;
+}
+
+/* Does a crossing at x[0], x[1], x[2] on copies moved 1, 2 and 4 times as
+   far close on an end of the edge xlo..xhi as the copies close on the
+   edge?  Its distance to that end shrinks with the move (in proportion,
+   or with its square root at a tangency); a crossing of the edge itself
+   stays put.  Returns 0 (no), 1 (the lower end) or 2 (the upper end). */
+static int closes_on_end(const double x[3], double xlo, double xhi)
+{
+    for (int e = 0; e < 2; e++) {
+        double d[3];
+        for (int k = 0; k < 3; k++) d[k] = fabs(x[k] - (e ? xhi : xlo));
+        if (d[1] > END_RATE * d[0] && d[2] > END_RATE * d[1]) return e + 1;
+    }
+    return 0;
+}
+
+/* The point of the edge as cell (i, j, k) sees it (side_point), from
+   copies of the edge moved 1, 2 and 4 times off towards the cell: each
+   crossing that closes on an end as the copies close on the edge belongs
+   to a surface through that end (a cone's rim or a face of the geometry
+   through the grid vertex), which the cell's view of the end already
+   holds; the others are the edge's own.  One of those: the point,
+   extrapolated to no move.  None: the edge is of one class inside, and
+   the point is the end the cell sees otherwise (the fluid or solid there
+   is a sliver thinner than any move).  Several (a feature thinner than
+   the edge): the one nearest the fluid end, as edge_cut keeps.  Returns
+   0 when the copies do not agree on their crossings. */
+static int own_point(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, const double off0[3],
+                     double *s, int *leaf)
+{
+    double xs[3][8], off[3] = {off0[0], off0[1], off0[2]};
+    int n[3], f[3][2], lv[3][8];
+    for (int k = 0; k < 3; k++) {
+        n[k] = copy_crossings(c, a, p0, xhi, off, xs[k], lv[k], 8, f[k]);
+        if (k && (n[k] != n[0] || f[k][0] != f[0][0] || f[k][1] != f[0][1])) return 0;
+        for (int b = 0; b < 3; b++) off[b] *= 2;
+    }
+    int lo = 0, hi = n[0], best = -1;
+    double xf = fluid_lo ? p0[a] : xhi;
+    while (lo < hi) {
+        double t[3] = {xs[0][lo], xs[1][lo], xs[2][lo]};
+        if (closes_on_end(t, p0[a], xhi) != 1) break;
+        lo++;
+    }
+    while (hi > lo) {
+        double t[3] = {xs[0][hi - 1], xs[1][hi - 1], xs[2][hi - 1]};
+        if (closes_on_end(t, p0[a], xhi) != 2) break;
+        hi--;
+    }
+    if (lo == hi) {
+        /* inside the ends' surfaces the edge is of class f ^ (lo odd) */
+        int inner = f[0][0] ^ (lo & 1);
+        *s = inner != fluid_lo ? p0[a] : xhi;
+        *leaf = -1;
+        return 1;
+    }
+    for (int r = lo; r < hi; r++)
+        if (best < 0 || fabs(xs[0][r] - xf) < fabs(xs[0][best] - xf)) best = r;
+    double t[3] = {xs[0][best], xs[1][best], xs[2][best]};
+    *s = settle(c, extrapolate(t, 3), p0[a], xhi);
+    *leaf = lv[0][best];
+    return 1;
+}
+
 /* The point of the edge from corner q of cell (i, j, k) along a, whose
    ends the cell sees differently though neither is fluid for the grid (an
    edge in a face of the geometry on a grid plane, from a corner on it to
-   one beyond its rim): the crossing on copies of the edge moved snap x
-   (cell width) and twice that towards the cell's centre, extrapolated to
-   no move, as offset_cut does; on the solid end when no copy crosses. */
+   one beyond its rim), from copies of the edge moved towards the cell's
+   centre (own_point); where those disagree, the crossing on copies whose
+   ends the cell sees like the edge's, as offset_cut finds it; on the
+   solid end when no copy crosses.  The copies move SKEW times as far
+   along the second axis across the edge as along the first, so that they
+   do not run in a plane of the geometry through the edge (planes with
+   small integer normals, a cone's side): a copy in such a plane has no
+   side to see. */
 static void side_point(Ctx *c, const int ijk[3], int q, int a, int fluid_lo)
 {
     int64_t v = cell_corner(c, cell_base(c, ijk[0], ijk[1], ijk[2]), q);
     int vi[3];
     vertex_ijk(c, v, vi);
     double p0[3] = {c->x[0][vi[0]], c->x[1][vi[1]], c->x[2][vi[2]]}, xhi = c->x[a][vi[a] + 1];
-    double h = xhi - p0[a], off[3] = {0, 0, 0}, sk[3], s1;
+    double h = xhi - p0[a], off[3] = {0, 0, 0}, s1;
     for (int b = 0; b < 3; b++)
-        if (b != a) off[b] = ((q >> b) & 1 ? -1 : 1) * OFFSET * c->snap * (c->x[b][ijk[b] + 1] - c->x[b][ijk[b]]);
-    int l1, l2, nk = 0;
+        if (b != a)
+            off[b] = ((q >> b) & 1 ? -1 : 1) * (b == (a + 2) % 3 ? SKEW : 1) * OFFSET * c->snap *
+                     (c->x[b][ijk[b] + 1] - c->x[b][ijk[b]]);
+    int l1 = -1;
     CutPt *p;
-    while (nk < 3 && shifted_cut(c, a, p0, xhi, fluid_lo, off, &sk[nk], nk ? &l2 : &l1)) {
-        for (int b = 0; b < 3; b++) off[b] *= 2;
-        nk++;
-    }
-    if (nk) {
-        s1 = settle(c, extrapolate(sk, nk), p0[a], xhi);
-    } else if (!offset_cut(c, a, v, fluid_lo, &s1, &l1)) {
+    if (!own_point(c, a, p0, xhi, fluid_lo, off, &s1, &l1) && !offset_cut(c, a, v, fluid_lo, &s1, &l1)) {
         c->st->ninconsistent++;
         p = cut_insert(c, 3 * v + a);
         p->side = 1;

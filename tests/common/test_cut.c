@@ -914,7 +914,9 @@ static int aligned_mask(const Geometry *g, const CartGrid *cg, const int ijk[3])
 
 /* Cells where the two flow sides need not add up, by design: a face
    with two diagonal fluid corners (either side joins its own fluid), a
-   body diagonal (tunnel), an edge crossed twice or more inside. */
+   body diagonal (tunnel), an edge crossed twice or more inside, on the
+   edge itself or as the cell sees it (a feature thinner than the cell
+   crossing an edge that lies in a face of another part). */
 static int aligned_irregular(const Geometry *g, const Mesh *grid, int ci)
 {
     const CartGrid *cg = &grid->cart;
@@ -941,6 +943,21 @@ static int aligned_irregular(const Geometry *g, const Mesh *grid, int ci)
             GeoCross cr[8];
             int nc = geometry_crossings(g, a, b, cr, 8), inner = 0;
             for (int i = 0; i < nc && i < 8; i++) inner += cr[i].t > 1e-6 && cr[i].t < 1 - 1e-6;
+            if (inner >= 2) return 1;
+            /* as the cell sees the edge: a copy moved a little towards its
+               centre, less along one axis than the other so as not to run
+               in a plane of the geometry (an edge in a face of the
+               geometry crosses nothing itself); crossings that close on
+               an end as the copy closes on the edge, a surface through the
+               end, are left out */
+            for (int d = 0; d < 3; d++) {
+                double mid = cg->x[d][ijk[d]] + (cg->x[d][ijk[d] + 1] - cg->x[d][ijk[d]]) / 2;
+                double w = d == k ? 0 : d == (k + 2) % 3 ? 0.618e-7 : 1e-7;
+                a[d] += w * (mid - a[d]);
+                b[d] += w * (mid - b[d]);
+            }
+            nc = geometry_crossings(g, a, b, cr, 8), inner = 0;
+            for (int i = 0; i < nc && i < 8; i++) inner += cr[i].t > 1e-3 && cr[i].t < 1 - 1e-3;
             if (inner >= 2) return 1;
         }
     return 0;
