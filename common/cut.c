@@ -100,6 +100,13 @@
 #define DEGENERATE 1e-12  /* a cell piece below this fraction of its cell is dropped */
 #define OFFSET     (4 * EXTRA_SNAP) /* moved edge copies, in snap distances (offset_cut) */
 #define PROBE      1000  /* corner probes, in snap distances (local_fluid) */
+
+/* Corner probes go this much of the way along each axis (times PROBE x
+   snap of the way to the cell's centre): 1, 1/phi and 1/sqrt(2) have no
+   rational relation, so no plane with an integer normal (a half-space
+   through the vertex, a prism's side along the cell's diagonal) holds a
+   probe, which would leave the corner's class to round-off. */
+static const double probe_w[3] = {1, 0.6180339887498949, 0.7071067811865476};
 #define SKEW       0.6180339887498949 /* a cell's edge copies: second offset / first (side_point) */
 #define END_RATE   1.2   /* a crossing closes on an end: distance ratio per doubled move (closes_on_end) */
 
@@ -573,7 +580,7 @@ static int probe_differs(const Ctx *c, int64_t v)
         for (int a = 0; a < 3; a++) {
             int up = (q >> a) & 1, lo = ijk[a] - up, in = lo < 0 ? 0 : lo >= c->n[a] ? c->n[a] - 1 : lo;
             double w = c->x[a][in + 1] - c->x[a][in];
-            x[a] = c->x[a][ijk[a]] + eta * (up ? -w : w) / 2;
+            x[a] = c->x[a][ijk[a]] + probe_w[a] * eta * (up ? -w : w) / 2;
         }
         int f = geometry_fluid(c->g, x);
         if (seen >= 0 && f != seen) return 1;
@@ -1368,7 +1375,7 @@ static int local_fluid(const Ctx *c, int i, int j, int k, int q)
     double eta = fmin(PROBE * c->snap, 0.25), x[3];
     for (int a = 0; a < 3; a++) {
         double lo = c->x[a][ijk[a]], hi = c->x[a][ijk[a] + 1], v = (q >> a) & 1 ? hi : lo;
-        x[a] = v + eta * ((lo + hi) / 2 - v);
+        x[a] = v + probe_w[a] * eta * ((lo + hi) / 2 - v);
     }
     return geometry_fluid(c->g, x);
 }

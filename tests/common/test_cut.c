@@ -889,7 +889,7 @@ TEST(cut_thin_slab_rim)
 
 /* Corner classes as cut.c's cells see them: a corner on the surface
    (within 1e-9 of the cell size) takes the class of a point a little way
-   towards the cell's centre. */
+   towards the cell's centre, skewed as cut.c's probes are. */
 static int aligned_mask(const Geometry *g, const CartGrid *cg, const int ijk[3])
 {
     int mask = 0;
@@ -905,8 +905,9 @@ static int aligned_mask(const Geometry *g, const CartGrid *cg, const int ijk[3])
             for (int k = 0, dd = d; k < 3; k++, dd /= 3) y[k] = p[k] + (dd % 3 - 1) * 1e-9 * h[k];
             on = geometry_fluid(g, y) != f;
         }
+        static const double w[3] = {1, 0.6180339887498949, 0.7071067811865476}; /* cut.c's probe_w */
         if (on)
-            for (int k = 0; k < 3; k++) y[k] = p[k] + 1e-5 * (cg->x[k][ijk[k]] + h[k] / 2 - p[k]);
+            for (int k = 0; k < 3; k++) y[k] = p[k] + w[k] * 1e-5 * (cg->x[k][ijk[k]] + h[k] / 2 - p[k]);
         mask |= (on ? geometry_fluid(g, y) : f) << q;
     }
     return mask;
