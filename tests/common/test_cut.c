@@ -605,8 +605,9 @@ TEST(cut_patches)
 
 /* ---- random robustness ---- */
 
-/* Is point x on a grid line (two coordinates on grid planes)? */
-static int on_grid_line(const CartGrid *g, const double *x)
+/* Is point x on a grid plane (a cut point on a grid line, or where two
+   cells' chords cross on a grid face), not a fan centre? */
+static int on_grid_plane(const CartGrid *g, const double *x)
 {
     int on = 0;
     for (int k = 0; k < 3; k++)
@@ -615,12 +616,12 @@ static int on_grid_line(const CartGrid *g, const double *x)
                 on++;
                 break;
             }
-    return on >= 2;
+    return on >= 1;
 }
 
 /* Per Cartesian cell: the sum of the cut volumes of the two flow sides;
    odd[parent] is set where a non-planar boundary loop was triangulated by
-   its own points (no fan centre off the grid lines): cut.c does that only
+   its own points (no fan centre off the grid planes): cut.c does that only
    to keep face pyramids positive, judged for each side on its own, so
    the two sides' surfaces may differ there. */
 static void add_parent_vol(const Mesh *m, double *pv, char *odd)
@@ -634,7 +635,7 @@ static void add_parent_vol(const Mesh *m, double *pv, char *odd)
             if (f < m->ninternal || mesh_face_patch(m, f) < ngrid) continue;
             nimm++;
             for (int j = m->face_off[f]; j < m->face_off[f + 1]; j++)
-                if (!on_grid_line(&m->cart, m->points + 3 * m->face_idx[j])) off = 1;
+                if (!on_grid_plane(&m->cart, m->points + 3 * m->face_idx[j])) off = 1;
         }
         if (nimm >= 2 && !off) odd[m->cell_parent[c]] = 1;
     }
