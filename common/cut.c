@@ -37,14 +37,24 @@
 ** on the fluid side of a face on a grid plane keep their whole volume
 ** (a cylinder's cap, flow inside a grid-aligned box).
 **
-** Faces.  A grid face polygon is walked round its corners in the order
-** base, +u, +u+v, +v (normal +a, with u = a+1, v = a+2 cyclically),
-** emitting fluid corners and cut points (two diagonal fluid corners are
-** joined: a hexagon); consecutive repeats of a point (cut points snapped
-** onto one vertex) are dropped.  The same walk serves both cells of a
-** face and both cyclic sides of a box (the min side reverses it keeping
-** the first point, blockGrid's rule), so shared faces agree point for
-** point.  Sides joining two cut points, reversed, are the boundary's edges
+** Each cell's own points (local_points).  Where a grid edge lies in a
+** face of one part of the geometry and another part crosses it, the
+** cells on the two sides of that face see different points on the edge;
+** every cell that cuts an edge from a vertex on the surface keeps its own
+** point (a CutView, cut_impl.h), from copies of the edge moved into the
+** cell (own_point), and equal points are settled into one.
+**
+** Faces (cut_face.c).  A grid face polygon is walked round its corners in
+** the order base, +u, +u+v, +v (normal +a, with u = a+1, v = a+2
+** cyclically), emitting fluid corners and the cell's points on the edges
+** (two diagonal fluid corners are joined: a hexagon); consecutive repeats
+** of a point (cut points snapped onto one vertex) are dropped, and a side
+** along a grid edge takes the edge's other points.  The same walk serves
+** both cells of a face and both cyclic sides of a box (the min side
+** reverses it keeping the first point, blockGrid's rule), so shared faces
+** agree point for point; where two cells see a face differently, they
+** share the part both see and keep the rest as walls.  Sides joining two
+** cut points, reversed, are the boundary's edges
 ** in the cell: pairs running both ways (a zero-area spur where a snapped
 ** point sits on a cell edge) cancel, and the rest chain into simple loops.
 ** Every cut point enters and leaves the cell's grid faces equally often,
@@ -581,11 +591,11 @@ static size_t probe_try(Ctx *c, Probe *P, int64_t w, int near, int64_t **list, s
    one joins the snapping list, a solid one is marked; either way each of
    its cells then judges it by its own probe (local_masks).  The search
    starts as well from the ends of edges whose ends differ that lie on
-   the surface to the snap distance: a
-   vertex on a cone's rim or a prism's corner is solid for both flow
-   sides (a point on a surface counts as solid), and so has fluid
-   neighbours, and is found by snapping, on one side only; both sides
-   have to find it for their cells to see complementary corners. */
+   the surface to the snap distance: a vertex on a cone's rim or a
+   prism's corner is solid for both flow sides (a point on a surface
+   counts as solid), and so has fluid neighbours, and is found by
+   snapping, on one side only; both sides have to find it for their
+   cells to see complementary corners. */
 static size_t probe_corners(Ctx *c, int64_t **list, size_t nl, size_t *lcap)
 {
     int64_t nvt = c->sv[2] * c->nv[2];
