@@ -37,14 +37,24 @@
 ** on the fluid side of a face on a grid plane keep their whole volume
 ** (a cylinder's cap, flow inside a grid-aligned box).
 **
-** Faces.  A grid face polygon is walked round its corners in the order
-** base, +u, +u+v, +v (normal +a, with u = a+1, v = a+2 cyclically),
-** emitting fluid corners and cut points (two diagonal fluid corners are
-** joined: a hexagon); consecutive repeats of a point (cut points snapped
-** onto one vertex) are dropped.  The same walk serves both cells of a
-** face and both cyclic sides of a box (the min side reverses it keeping
-** the first point, blockGrid's rule), so shared faces agree point for
-** point.  Sides joining two cut points, reversed, are the boundary's edges
+** Each cell's own points (local_points).  Where a grid edge lies in a
+** face of one part of the geometry and another part crosses it, the
+** cells on the two sides of that face see different points on the edge;
+** every cell that cuts an edge from a vertex on the surface keeps its own
+** point (a CutView, cut_impl.h), from copies of the edge moved into the
+** cell (own_point), and equal points are settled into one.
+**
+** Faces (cut_face.c).  A grid face polygon is walked round its corners in
+** the order base, +u, +u+v, +v (normal +a, with u = a+1, v = a+2
+** cyclically), emitting fluid corners and the cell's points on the edges
+** (two diagonal fluid corners are joined: a hexagon); consecutive repeats
+** of a point (cut points snapped onto one vertex) are dropped, and a side
+** along a grid edge takes the edge's other points.  The same walk serves
+** both cells of a face and both cyclic sides of a box (the min side
+** reverses it keeping the first point, blockGrid's rule), so shared faces
+** agree point for point; where two cells see a face differently, they
+** share the part both see and keep the rest as walls.  Sides joining two
+** cut points, reversed, are the boundary's edges
 ** in the cell: pairs running both ways (a zero-area spur where a snapped
 ** point sits on a cell edge) cancel, and the rest chain into simple loops.
 ** Every cut point enters and leaves the cell's grid faces equally often,
@@ -80,6 +90,7 @@
 #include <string.h>
 
 #include "cartcells.h"
+#include "cut_impl.h"
 #include "geom.h"
 #include "mem.h"
 #include "meshbuild.h"
@@ -92,63 +103,25 @@
 #endif
 
 #define PLANAR_TOL 1e-12 /* loop planarity, relative to its size (cut.h) */
-#define SIDE_TOL   1e-9  /* box-side recognition, relative to the box */
-#define MAXP       16    /* points of one grid-face polygon (at most 8) */
-#define MAXS       64    /* boundary segments of one cell (at most 24) */
+#define MAXS       96    /* boundary segments of one cell */
 #define MAXSIDE    (6 * MAXP) /* sides of one cell's grid-face polygons */
 #define EXTRA_SNAP 100   /* extrapolated crossings: snap distances to an end (settle) */
 #define DEGENERATE 1e-12  /* a cell piece below this fraction of its cell is dropped */
 #define OFFSET     (4 * EXTRA_SNAP) /* moved edge copies, in snap distances (offset_cut) */
 #define PROBE      1000  /* corner probes, in snap distances (local_fluid) */
 
-typedef struct CutPt {
-    int64_t key;    /* 3 v + axis, -1: empty slot */
-    double s;       /* coordinate along the axis */
-    int leaf;       /* leaf crossed, -1: unknown */
-    int pt;         /* mesh point, -1 until used */
-    signed char at; /* -1: inside the edge; 0/1: on the lower/upper vertex */
-    char dead;      /* removed by snapping */
-    char side;      /* placed by side_point (a cell's view) */
-} CutPt;
-
-typedef struct Poly {
-    int n;
-    int pt[MAXP];
-    int leaf[MAXP]; /* leaf of a cut point, -1 */
-} Poly;
+/* Corner probes go this much of the way along each axis (times PROBE x
+   snap of the way to the cell's centre): 1, 1/phi and 1/sqrt(2) have no
+   rational relation, so no plane with an integer normal (a half-space
+   through the vertex, a prism's side along the cell's diagonal) holds a
+   probe, which would leave the corner's class to round-off. */
+static const double probe_w[3] = {1, 0.6180339887498949, 0.7071067811865476};
+#define SKEW       0.6180339887498949 /* a cell's edge copies: second offset / first (side_point) */
+#define END_RATE   1.2   /* a crossing closes on an end: distance ratio per doubled move (closes_on_end) */
 
 typedef struct Seg {
     int a, b, la, lb;
 } Seg;
-
-typedef struct WallFace {
-    int patch;
-    double n[3];
-} WallFace;
-
-typedef struct Ctx {
-    const Geometry *g;
-    int n[3], nv[3];
-    const double *x[3];
-    int64_t sv[3]; /* vertex strides */
-    int64_t sc[3]; /* cell strides */
-    char *cls;     /* per vertex: 1 fluid, 0 solid (2: snapping) */
-    char *onsurf;  /* per vertex: 1 when on the surface (within snap) */
-    float *level;  /* per vertex: |geometry_level|, or -1 not yet known (diagonal_touch) */
-    unsigned char *lmask; /* per Cartesian cell: its fluid corners (bit q), local_masks */
-    int *vpt;      /* per vertex: mesh point or -1 */
-    int *cellid;   /* per Cartesian cell: new cell or -1 */
-    CutPt *tab;
-    size_t cap, cnt;
-    double snap;
-    int npatch_grid;
-    MeshBuild b;
-    WallFace *wall; /* boundary faces in order of addition */
-    size_t nwall, wall_cap;
-    double *cvol;         /* per new cell: its volume */
-    double vref[3], vacc; /* the cut cell being built: reference, volume */
-    CutStats *st;
-} Ctx;
 
 void cut_opts_default(CutOpts *o)
 {
@@ -176,20 +149,6 @@ int cut_read_opts(const char *path, CutOpts *o, Err *e)
 
 /* ---- the cut-point table ---- */
 
-static size_t slot_of(const Ctx *c, int64_t key)
-{
-    uint64_t h = (uint64_t)key * 0x9E3779B97F4A7C15ull;
-    return (size_t)(h >> 17) & (c->cap - 1);
-}
-
-static CutPt *cut_find(const Ctx *c, int64_t key)
-{
-    for (size_t i = slot_of(c, key);; i = (i + 1) & (c->cap - 1)) {
-        if (c->tab[i].key == key) return c->tab[i].dead ? NULL : &c->tab[i];
-        if (c->tab[i].key < 0) return NULL;
-    }
-}
-
 static void tab_alloc(Ctx *c, size_t cap)
 {
     c->cap = cap;
@@ -205,47 +164,29 @@ static CutPt *cut_insert(Ctx *c, int64_t key)
         tab_alloc(c, 2 * oc);
         for (size_t i = 0; i < oc; i++)
             if (old[i].key >= 0) {
-                size_t j = slot_of(c, old[i].key);
+                size_t j = cut_slot(c, old[i].key);
                 while (c->tab[j].key >= 0) j = (j + 1) & (c->cap - 1);
                 c->tab[j] = old[i];
             }
         free(old);
     }
-    size_t i = slot_of(c, key);
+    size_t i = cut_slot(c, key);
     while (c->tab[i].key >= 0 && c->tab[i].key != key) i = (i + 1) & (c->cap - 1);
     if (c->tab[i].key < 0) c->cnt++;
-    c->tab[i] = (CutPt){key, 0, -1, -1, -1, 0, 0};
+    c->tab[i] = (CutPt){key, 0, -1, -1, -1, -1, 0, 0};
     return &c->tab[i];
 }
 
 /* ---- vertices ---- */
 
-static void vertex_ijk(const Ctx *c, int64_t v, int ijk[3])
-{
-    ijk[0] = (int)(v % c->nv[0]);
-    ijk[1] = (int)((v / c->nv[0]) % c->nv[1]);
-    ijk[2] = (int)(v / ((int64_t)c->nv[0] * c->nv[1]));
-}
-
-static int vertex_point(Ctx *c, int64_t v)
-{
-    if (c->vpt[v] < 0) {
-        int ijk[3];
-        vertex_ijk(c, v, ijk);
-        double x[3] = {c->x[0][ijk[0]], c->x[1][ijk[1]], c->x[2][ijk[2]]};
-        c->vpt[v] = meshbuild_point(&c->b, x);
-    }
-    return c->vpt[v];
-}
-
-static int cut_point(Ctx *c, CutPt *p)
+int cut_point(Ctx *c, CutPt *p)
 {
     int64_t v = p->key / 3;
     int a = (int)(p->key % 3);
-    if (p->at >= 0) return vertex_point(c, v + (p->at ? c->sv[a] : 0));
+    if (p->at >= 0) return cut_vertex_point(c, v + (p->at ? c->sv[a] : 0));
     if (p->pt < 0) {
         int ijk[3];
-        vertex_ijk(c, v, ijk);
+        cut_vertex_ijk(c, v, ijk);
         double x[3] = {c->x[0][ijk[0]], c->x[1][ijk[1]], c->x[2][ijk[2]]};
         x[a] = p->s;
         p->pt = meshbuild_point(&c->b, x);
@@ -368,7 +309,7 @@ static double settle(const Ctx *c, double s, double xlo, double xhi)
 static int offset_cut(const Ctx *c, int a, int64_t v, int fluid_lo, double *s, int *leaf)
 {
     int ijk[3], found = 0, u = (a + 1) % 3, w = (a + 2) % 3;
-    vertex_ijk(c, v, ijk);
+    cut_vertex_ijk(c, v, ijk);
     double p0[3] = {c->x[0][ijk[0]], c->x[1][ijk[1]], c->x[2][ijk[2]]};
     double xhi = c->x[a][ijk[a] + 1], xf = fluid_lo ? p0[a] : xhi, h[3] = {0, 0, 0};
     for (int b = 0; b < 3; b++) {
@@ -491,7 +432,7 @@ static double edge_len(const Ctx *c, const CutPt *p, double *xlo, double *xhi)
 {
     int64_t v = p->key / 3;
     int a = (int)(p->key % 3), ijk[3];
-    vertex_ijk(c, v, ijk);
+    cut_vertex_ijk(c, v, ijk);
     *xlo = c->x[a][ijk[a]];
     *xhi = c->x[a][ijk[a] + 1];
     return *xhi - *xlo;
@@ -564,20 +505,81 @@ static size_t snap_diagonal(Ctx *c, int64_t **list, size_t nl, size_t *lcap)
 static int probe_differs(const Ctx *c, int64_t v)
 {
     int ijk[3], seen = -1;
-    vertex_ijk(c, v, ijk);
+    cut_vertex_ijk(c, v, ijk);
     double eta = fmin(PROBE * c->snap, 0.25);
     for (int q = 0; q < 8; q++) {
         double x[3];
         for (int a = 0; a < 3; a++) {
             int up = (q >> a) & 1, lo = ijk[a] - up, in = lo < 0 ? 0 : lo >= c->n[a] ? c->n[a] - 1 : lo;
             double w = c->x[a][in + 1] - c->x[a][in];
-            x[a] = c->x[a][ijk[a]] + eta * (up ? -w : w) / 2;
+            x[a] = c->x[a][ijk[a]] + probe_w[a] * eta * (up ? -w : w) / 2;
         }
         int f = geometry_fluid(c->g, x);
         if (seen >= 0 && f != seen) return 1;
         seen = f;
     }
     return 0;
+}
+
+/* Does vertex v lie on the surface to snap x the diagonal of its largest
+   cell, as far as |level| (at most the distance) tells? */
+static int level_near(const Ctx *c, int64_t v)
+{
+    int ijk[3];
+    cut_vertex_ijk(c, v, ijk);
+    double x[3], d2 = 0;
+    for (int a = 0; a < 3; a++) {
+        int lo = ijk[a] > 0 ? ijk[a] - 1 : 0, hi = ijk[a] < c->n[a] ? ijk[a] + 1 : c->n[a];
+        double w = fmax(c->x[a][ijk[a]] - c->x[a][lo], c->x[a][hi] - c->x[a][ijk[a]]);
+        d2 += w * w;
+        x[a] = c->x[a][ijk[a]];
+    }
+    float *lv = &c->level[v];
+    if (*lv < 0) *lv = (float)fabs(geometry_level(c->g, x));
+    return *lv <= 2 * c->snap * sqrt(d2);
+}
+
+/* Is vertex v an end of a grid edge whose ends differ? */
+static int mixed_end(const Ctx *c, int64_t v)
+{
+    int ijk[3];
+    cut_vertex_ijk(c, v, ijk);
+    for (int a = 0; a < 3; a++)
+        for (int dir = -1; dir <= 1; dir += 2)
+            if (ijk[a] + dir >= 0 && ijk[a] + dir < c->nv[a] && !c->cls[v + dir * c->sv[a]] != !c->cls[v]) return 1;
+    return 0;
+}
+
+/* The search of probe_corners: vertices seen, and the queue of those
+   on the surface whose neighbours are still to be looked at. */
+typedef struct Probe {
+    char *seen;
+    int64_t *queue;
+    size_t nq, qcap;
+} Probe;
+
+static void probe_push(Probe *P, int64_t v)
+{
+    P->seen[v] = 1;
+    mem_grow((void **)&P->queue, &P->qcap, P->nq + 1, sizeof *P->queue);
+    P->queue[P->nq++] = v;
+}
+
+/* Vertex w joins the vertices on the surface when its cells' probes
+   disagree (near: only when it lies on the surface to the snap distance
+   as well): a fluid one joins the snapping list, a solid one is marked. */
+static size_t probe_try(Ctx *c, Probe *P, int64_t w, int near, int64_t **list, size_t nl, size_t *lcap)
+{
+    if (P->seen[w] || (near && !level_near(c, w)) || !probe_differs(c, w)) return nl;
+    if (c->cls[w] == 1) {
+        c->cls[w] = 2;
+        mem_grow((void **)list, lcap, nl + 1, sizeof **list);
+        (*list)[nl++] = w;
+    } else {
+        c->onsurf[w] = 1;
+    }
+    probe_push(P, w);
+    return nl;
 }
 
 /* Vertices on the surface that no crossing meets and no diagonal shows:
@@ -587,41 +589,31 @@ static int probe_differs(const Ctx *c, int64_t v)
    face.  They are searched among the grid neighbours of the vertices
    already known on the surface, outwards while new ones turn up: a fluid
    one joins the snapping list, a solid one is marked; either way each of
-   its cells then judges it by its own probe (local_masks). */
+   its cells then judges it by its own probe (local_masks).  The search
+   starts as well from the ends of edges whose ends differ that lie on
+   the surface to the snap distance: a vertex on a cone's rim or a
+   prism's corner is solid for both flow sides (a point on a surface
+   counts as solid), and so has fluid neighbours, and is found by
+   snapping, on one side only; both sides have to find it for their
+   cells to see complementary corners. */
 static size_t probe_corners(Ctx *c, int64_t **list, size_t nl, size_t *lcap)
 {
-    int64_t nvt = c->sv[2] * c->nv[2], *queue = NULL;
-    size_t nq = 0, qcap = 0;
-    char *seen = mem_alloc((size_t)nvt);
-    memset(seen, 0, (size_t)nvt);
+    int64_t nvt = c->sv[2] * c->nv[2];
+    Probe P = {mem_calloc((size_t)nvt, 1), NULL, 0, 0};
     for (int64_t v = 0; v < nvt; v++)
-        if (c->onsurf[v] || c->cls[v] == 2) {
-            seen[v] = 1;
-            mem_grow((void **)&queue, &qcap, nq + 1, sizeof *queue);
-            queue[nq++] = v;
-        }
-    for (size_t h = 0; h < nq; h++) {
+        if (c->onsurf[v] || c->cls[v] == 2) probe_push(&P, v);
+    for (int64_t v = 0; v < nvt; v++)
+        if (mixed_end(c, v)) nl = probe_try(c, &P, v, 1, list, nl, lcap);
+    for (size_t h = 0; h < P.nq; h++) {
         int ijk[3];
-        vertex_ijk(c, queue[h], ijk);
+        cut_vertex_ijk(c, P.queue[h], ijk);
         for (int a = 0; a < 3; a++)
-            for (int dir = -1; dir <= 1; dir += 2) {
-                if (ijk[a] + dir < 0 || ijk[a] + dir >= c->nv[a]) continue;
-                int64_t w = queue[h] + dir * c->sv[a];
-                if (seen[w] || !probe_differs(c, w)) continue;
-                seen[w] = 1;
-                if (c->cls[w] == 1) {
-                    c->cls[w] = 2;
-                    mem_grow((void **)list, lcap, nl + 1, sizeof **list);
-                    (*list)[nl++] = w;
-                } else {
-                    c->onsurf[w] = 1;
-                }
-                mem_grow((void **)&queue, &qcap, nq + 1, sizeof *queue);
-                queue[nq++] = w;
-            }
+            for (int dir = -1; dir <= 1; dir += 2)
+                if (ijk[a] + dir >= 0 && ijk[a] + dir < c->nv[a])
+                    nl = probe_try(c, &P, P.queue[h] + dir * c->sv[a], 0, list, nl, lcap);
     }
-    free(queue);
-    free(seen);
+    free(P.queue);
+    free(P.seen);
     return nl;
 }
 
@@ -665,7 +657,7 @@ static void snap(Ctx *c)
     c->st->nsnap += (int)nl;
     for (size_t k = 0; k < nl; k++) {
         int ijk[3];
-        vertex_ijk(c, list[k], ijk);
+        cut_vertex_ijk(c, list[k], ijk);
         for (int a = 0; a < 3; a++)
             for (int dir = -1; dir <= 1; dir += 2) {
                 int ia = ijk[a] + dir;
@@ -705,57 +697,7 @@ static void snap(Ctx *c)
     }
 }
 
-/* ---- step 4: grid faces ---- */
-
-/* A repeated point is dropped, keeping the leaf of a cut point that
-   falls on a corner (a corner on the surface that is fluid for the cell). */
-static void poly_add(Poly *p, int pt, int leaf)
-{
-    if (p->n > 0 && p->pt[p->n - 1] == pt) {
-        if (p->leaf[p->n - 1] < 0) p->leaf[p->n - 1] = leaf;
-        return;
-    }
-    p->pt[p->n] = pt;
-    p->leaf[p->n++] = leaf;
-}
-
-/* The marching-squares polygon of the grid face normal to a with base
-   vertex v0, normal +a, for the fluid corners in bits (bit q: corner q in
-   the order base, +u, +u+v, +v; empty when bits is 0).  An edge's point
-   enters wherever one of its ends is fluid: as a cut point when the
-   other is not, else as a point on a side of the polygon, so every face
-   that holds part of a grid edge holds that edge's point (no hanging
-   points between faces whose cells see the edge differently). */
-static void face_poly_ms(Ctx *c, int a, int64_t v0, int bits, Poly *p)
-{
-    int u = (a + 1) % 3, w = (a + 2) % 3;
-    int64_t cv[4] = {v0, v0 + c->sv[u], v0 + c->sv[u] + c->sv[w], v0 + c->sv[w]};
-    /* edge q joins corner q to q+1; its axis and lower vertex */
-    const int eax[4] = {u, w, u, w};
-    const int64_t elo[4] = {cv[0], cv[1], cv[3], cv[0]};
-    p->n = 0;
-    if (!bits) return;
-    for (int q = 0; q < 4; q++) {
-        int fq = (bits >> q) & 1, fn = (bits >> ((q + 1) & 3)) & 1;
-        if (fq) poly_add(p, vertex_point(c, cv[q]), -1);
-        /* an edge between two fluid vertices of the grid has no point */
-        if ((fq || fn) && !(c->cls[cv[q]] == 1 && c->cls[cv[(q + 1) & 3]] == 1)) {
-            CutPt *e = cut_find(c, 3 * elo[q] + eax[q]);
-            if (e) poly_add(p, cut_point(c, e), e->leaf);
-        }
-    }
-    while (p->n > 1 && p->pt[p->n - 1] == p->pt[0]) {
-        if (p->leaf[0] < 0) p->leaf[0] = p->leaf[p->n - 1];
-        p->n--;
-    }
-}
-
-/* ---- step 5: boundary loops ---- */
-
-static const double *ptx(const Ctx *c, int pt)
-{
-    return c->b.points + 3 * (size_t)pt;
-}
+/* ---- step 5: boundary loops (step 4, grid faces: cut_face.c) ---- */
 
 /* Adds the sides of polygon p of a cell, reversed to run against the
    cell's outward normal; out = 1 when p's normal points out of the cell.
@@ -841,7 +783,7 @@ static int face_leaf(const Ctx *c, const int *leaf, int n, const double ctr[3])
     return lf >= 0 ? lf : geometry_nearest_leaf(c->g, ctr);
 }
 
-static void push_wall(Ctx *c, int patch, const double n[3])
+void cut_push_wall(Ctx *c, int patch, const double n[3])
 {
     mem_grow((void **)&c->wall, &c->wall_cap, c->nwall + 1, sizeof *c->wall);
     WallFace *w = &c->wall[c->nwall++];
@@ -857,7 +799,7 @@ static void poly_volume(Ctx *c, const int *pt, int n, int rev)
 {
     for (int i = 1; i + 1 < n; i++) {
         double u[3], w[3], z[3], x[3];
-        const double *a = ptx(c, pt[0]), *b = ptx(c, pt[rev ? i + 1 : i]), *d = ptx(c, pt[rev ? i : i + 1]);
+        const double *a = cut_ptx(c, pt[0]), *b = cut_ptx(c, pt[rev ? i + 1 : i]), *d = cut_ptx(c, pt[rev ? i : i + 1]);
         for (int k = 0; k < 3; k++) {
             u[k] = a[k] - c->vref[k];
             w[k] = b[k] - c->vref[k];
@@ -869,7 +811,7 @@ static void poly_volume(Ctx *c, const int *pt, int n, int rev)
 }
 
 /* An immersed boundary face of cell `cell`. */
-static void wall_face(Ctx *c, const int *pt, const int *leaf, int n, int cell)
+void cut_wall_face(Ctx *c, const int *pt, const int *leaf, int n, int cell)
 {
     double S[3], C[3], nv[3];
     geom_face(c->b.points, pt, n, S, C);
@@ -882,7 +824,7 @@ static void wall_face(Ctx *c, const int *pt, const int *leaf, int n, int cell)
         /* no usable surface normal (a flattened leaf whose nearest face is
            parallel to the section plane): the face's own normal */
         for (int k = 0; k < 3; k++) nv[k] = S[k] / la;
-    push_wall(c, patch, nv);
+    cut_push_wall(c, patch, nv);
     c->st->area_boundary += geom_norm(S);
     c->st->nboundary++;
 }
@@ -891,7 +833,7 @@ static void wall_face(Ctx *c, const int *pt, const int *leaf, int n, int cell)
    of the cell's volume. */
 static void add_wall(Ctx *c, const int *pt, const int *leaf, int n, int cell)
 {
-    wall_face(c, pt, leaf, n, cell);
+    cut_wall_face(c, pt, leaf, n, cell);
     poly_volume(c, pt, n, 0);
 }
 
@@ -899,7 +841,7 @@ static void loop_centroid(const Ctx *c, const Loop *L, double m[3])
 {
     m[0] = m[1] = m[2] = 0;
     for (int i = 0; i < L->n; i++)
-        for (int k = 0; k < 3; k++) m[k] += ptx(c, L->pt[i])[k];
+        for (int k = 0; k < 3; k++) m[k] += cut_ptx(c, L->pt[i])[k];
     for (int k = 0; k < 3; k++) m[k] /= L->n;
 }
 
@@ -908,7 +850,7 @@ static void loop_normal(const Ctx *c, const Loop *L, const double m[3], double N
 {
     N[0] = N[1] = N[2] = 0;
     for (int i = 0; i < L->n; i++) {
-        const double *p = ptx(c, L->pt[i]), *q = ptx(c, L->pt[(i + 1) % L->n]);
+        const double *p = cut_ptx(c, L->pt[i]), *q = cut_ptx(c, L->pt[(i + 1) % L->n]);
         double a[3] = {p[0] - m[0], p[1] - m[1], p[2] - m[2]};
         double b[3] = {q[0] - m[0], q[1] - m[1], q[2] - m[2]}, x[3];
         geom_cross(a, b, x);
@@ -923,12 +865,12 @@ static int loop_planar(const Ctx *c, const Loop *L, const double m[3])
     double nn = geom_norm(N);
     if (!(nn > 0)) return 0;
     for (int i = 0; i < L->n; i++) {
-        const double *p = ptx(c, L->pt[i]);
+        const double *p = cut_ptx(c, L->pt[i]);
         double d[3] = {p[0] - m[0], p[1] - m[1], p[2] - m[2]};
         size = fmax(size, geom_norm(d));
     }
     for (int i = 0; i < L->n; i++) {
-        const double *p = ptx(c, L->pt[i]);
+        const double *p = cut_ptx(c, L->pt[i]);
         double d[3] = {p[0] - m[0], p[1] - m[1], p[2] - m[2]};
         if (fabs(geom_dot(d, N)) / nn > PLANAR_TOL * size) return 0;
     }
@@ -958,14 +900,14 @@ static void polys_moment(const Ctx *c, const Poly *pl, const Poly *pu, double r[
         for (int h = 0; h < 2; h++) {
             const Poly *p = h ? &pu[a] : &pl[a];
             for (int i = 0; i < p->n; i++, np++)
-                for (int k = 0; k < 3; k++) r[k] += ptx(c, p->pt[i])[k];
+                for (int k = 0; k < 3; k++) r[k] += cut_ptx(c, p->pt[i])[k];
         }
     for (int k = 0; k < 3 && np; k++) r[k] /= np;
     for (int a = 0; a < 3; a++)
         for (int h = 0; h < 2; h++) {
             const Poly *p = h ? &pu[a] : &pl[a];
             for (int i = 1; i + 1 < p->n; i++)
-                tet_add(r, ptx(c, p->pt[0]), ptx(c, p->pt[h ? i : i + 1]), ptx(c, p->pt[h ? i + 1 : i]), v,
+                tet_add(r, cut_ptx(c, p->pt[0]), cut_ptx(c, p->pt[h ? i : i + 1]), cut_ptx(c, p->pt[h ? i + 1 : i]), v,
                         mo);
         }
 }
@@ -998,7 +940,7 @@ static double best_triangulation(const Ctx *c, const Loop *L, const double o[3],
             int j = i + len;
             q[i][j] = len == 1 ? none : -INFINITY;
             for (int k = i + 1; k < j; k++) {
-                double t = pyramid(ptx(c, L->pt[i]), ptx(c, L->pt[k]), ptx(c, L->pt[j]), o);
+                double t = pyramid(cut_ptx(c, L->pt[i]), cut_ptx(c, L->pt[k]), cut_ptx(c, L->pt[j]), o);
                 t = fmin(t, fmin(q[i][k], q[k][j]));
                 if (t > q[i][j]) q[i][j] = t, split[i][j] = k;
             }
@@ -1022,7 +964,7 @@ static void split_moment(const Ctx *c, const Loop *L, int split[MAXS][MAXS], int
 {
     if (j - i < 2) return;
     int k = split[i][j];
-    tet_add(r, ptx(c, L->pt[i]), ptx(c, L->pt[k]), ptx(c, L->pt[j]), v, mo);
+    tet_add(r, cut_ptx(c, L->pt[i]), cut_ptx(c, L->pt[k]), cut_ptx(c, L->pt[j]), v, mo);
     split_moment(c, L, split, i, k, r, v, mo);
     split_moment(c, L, split, k, j, r, v, mo);
 }
@@ -1032,7 +974,7 @@ static double split_quality(const Ctx *c, const Loop *L, int split[MAXS][MAXS], 
 {
     if (j - i < 2) return INFINITY;
     int k = split[i][j];
-    double q = pyramid(ptx(c, L->pt[i]), ptx(c, L->pt[k]), ptx(c, L->pt[j]), o);
+    double q = pyramid(cut_ptx(c, L->pt[i]), cut_ptx(c, L->pt[k]), cut_ptx(c, L->pt[j]), o);
     return fmin(q, fmin(split_quality(c, L, split, i, k, o), split_quality(c, L, split, k, j, o)));
 }
 
@@ -1040,7 +982,7 @@ static double split_quality(const Ctx *c, const Loop *L, int split[MAXS][MAXS], 
 static void fan_moment(const Ctx *c, const Loop *L, const double m[3], const double r[3], double *v,
                        double mo[3])
 {
-    for (int i = 0; i < L->n; i++) tet_add(r, m, ptx(c, L->pt[i]), ptx(c, L->pt[(i + 1) % L->n]), v, mo);
+    for (int i = 0; i < L->n; i++) tet_add(r, m, cut_ptx(c, L->pt[i]), cut_ptx(c, L->pt[(i + 1) % L->n]), v, mo);
 }
 
 /* A planar loop is one face; any other a fan of triangles about its
@@ -1064,7 +1006,7 @@ static void emit_loop(Ctx *c, const Loop *L, int cell, const double r[3], double
     fan_moment(c, L, m, r, &v, mo);
     for (int k = 0; k < 3; k++) o[k] = v > 0 ? mo[k] / v : r[k];
     for (int i = 0; i < L->n; i++)
-        q0 = fmin(q0, pyramid(m, ptx(c, L->pt[i]), ptx(c, L->pt[(i + 1) % L->n]), o));
+        q0 = fmin(q0, pyramid(m, cut_ptx(c, L->pt[i]), cut_ptx(c, L->pt[(i + 1) % L->n]), o));
     int split[MAXS][MAXS], best[MAXS][MAXS], have = 0;
     double qb = q0;
     for (int it = 0; it < 4 && !(qb > 0); it++) {
@@ -1125,12 +1067,12 @@ static double band_quality(const Ctx *c, const Loop *A, const Loop *B, int j0, c
     int tri[6][3], lf[3];
     for (int t = 0; t < 6; t++) {
         band_tri(A, B, j0, seq, t, tri[t], lf);
-        tet_add(r, ptx(c, tri[t][0]), ptx(c, tri[t][1]), ptx(c, tri[t][2]), &v, mo);
+        tet_add(r, cut_ptx(c, tri[t][0]), cut_ptx(c, tri[t][1]), cut_ptx(c, tri[t][2]), &v, mo);
     }
     if (!(v > 0)) return -INFINITY;
     for (int k = 0; k < 3; k++) o[k] = mo[k] / v;
     for (int t = 0; t < 6; t++)
-        q = fmin(q, pyramid(ptx(c, tri[t][0]), ptx(c, tri[t][1]), ptx(c, tri[t][2]), o));
+        q = fmin(q, pyramid(cut_ptx(c, tri[t][0]), cut_ptx(c, tri[t][1]), cut_ptx(c, tri[t][2]), o));
     return q;
 }
 
@@ -1159,15 +1101,15 @@ static int tunnel(Ctx *c, const Loop *A, const Loop *B, const Poly *pl, const Po
     double en = geom_norm(e1);
     for (int k = 0; k < 3; k++) e1[k] /= en;
     geom_cross(d, e1, e2);
-    double t0 = angle(ptx(c, A->pt[0]), ca, e1, e2, 0);
+    double t0 = angle(cut_ptx(c, A->pt[0]), ca, e1, e2, 0);
     double al[4], be[4], braw[3];
-    for (int i = 0; i < 3; i++) al[i] = angle(ptx(c, A->pt[i]), ca, e1, e2, t0);
+    for (int i = 0; i < 3; i++) al[i] = angle(cut_ptx(c, A->pt[i]), ca, e1, e2, t0);
     al[3] = 2 * M_PI;
     if (!(al[1] < al[2])) return 0;
     /* B reversed runs the same way round as A; start at its largest angle */
     int j0 = 0;
     for (int j = 0; j < 3; j++) {
-        braw[j] = angle(ptx(c, B->pt[(3 - j) % 3]), ca, e1, e2, t0);
+        braw[j] = angle(cut_ptx(c, B->pt[(3 - j) % 3]), ca, e1, e2, t0);
         if (braw[j] > braw[j0]) j0 = j;
     }
     for (int j = 0; j < 4; j++) be[j] = j == 0 ? braw[j0] - 2 * M_PI : braw[(j0 + j) % 3];
@@ -1201,11 +1143,6 @@ static int tunnel(Ctx *c, const Loop *A, const Loop *B, const Poly *pl, const Po
 
 /* ---- step 6: cells ---- */
 
-/* Base vertex of Cartesian cell (i, j, k). */
-static int64_t cell_base(const Ctx *c, int i, int j, int k)
-{
-    return i + c->nv[0] * (j + (int64_t)c->nv[1] * k);
-}
 
 /* Corners on the surface [our rule, doc/theory.md §6].  Snapping makes
    every vertex on the surface solid for the whole grid, which is right
@@ -1256,7 +1193,7 @@ static int local_fluid(const Ctx *c, int i, int j, int k, int q)
     double eta = fmin(PROBE * c->snap, 0.25), x[3];
     for (int a = 0; a < 3; a++) {
         double lo = c->x[a][ijk[a]], hi = c->x[a][ijk[a] + 1], v = (q >> a) & 1 ? hi : lo;
-        x[a] = v + eta * ((lo + hi) / 2 - v);
+        x[a] = v + probe_w[a] * eta * ((lo + hi) / 2 - v);
     }
     return geometry_fluid(c->g, x);
 }
@@ -1268,7 +1205,7 @@ static void local_masks(Ctx *c)
     for (int k = 0; k < c->n[2]; k++)
         for (int j = 0; j < c->n[1]; j++)
             for (int i = 0; i < c->n[0]; i++) {
-                int64_t v0 = cell_base(c, i, j, k);
+                int64_t v0 = cut_cell_base(c, i, j, k);
                 int m = 0, on = 0;
                 for (int q = 0; q < 8; q++) {
                     int64_t v = cell_corner(c, v0, q);
@@ -1282,169 +1219,266 @@ static void local_masks(Ctx *c)
 }
 
 
+/* The crossings (coordinates along a, ascending, at most maxn) of the
+   copy of edge (p0, along a to xhi) moved by off, and the classes of its
+   ends, judged snap x (edge) in, as shifted_cut judges them. */
+static int copy_crossings(const Ctx *c, int a, const double p0[3], double xhi, const double off[3], double *xs,
+                          int *leaf, int maxn, int f[2])
+{
+    double q0[3], q1[3], eta = c->snap * (xhi - p0[a]);
+    for (int k = 0; k < 3; k++) q0[k] = p0[k] + off[k];
+    memcpy(q1, q0, sizeof q1);
+    q1[a] = xhi;
+    q0[a] += eta;
+    q1[a] -= eta;
+    f[0] = geometry_fluid(c->g, q0);
+    f[1] = geometry_fluid(c->g, q1);
+    GeoCross cr[8];
+    int k = geometry_crossings(c->g, q0, q1, cr, 8), n = 0;
+    for (int r = 0; r < k && r < 8 && n < maxn; r++, n++) {
+        xs[n] = q0[a] + cr[r].t * (q1[a] - q0[a]);
+        leaf[n] = cr[r].leaf;
+    }
+    return n;
+}
+
+/* Does a crossing at x[0], x[1], x[2] on copies moved 1, 2 and 4 times as
+   far close on an end of the edge xlo..xhi as the copies close on the
+   edge?  Its distance to that end shrinks with the move (in proportion,
+   or with its square root at a tangency); a crossing of the edge itself
+   stays put.  Returns 0 (no), 1 (the lower end) or 2 (the upper end). */
+static int closes_on_end(const double x[3], double xlo, double xhi)
+{
+    for (int e = 0; e < 2; e++) {
+        double d[3];
+        for (int k = 0; k < 3; k++) d[k] = fabs(x[k] - (e ? xhi : xlo));
+        if (d[1] > END_RATE * d[0] && d[2] > END_RATE * d[1]) return e + 1;
+    }
+    return 0;
+}
+
+/* The point of the edge as cell (i, j, k) sees it (side_point), from
+   copies of the edge moved 1, 2 and 4 times off towards the cell: each
+   crossing that closes on an end as the copies close on the edge belongs
+   to a surface through that end (a cone's rim or a face of the geometry
+   through the grid vertex), which the cell's view of the end already
+   holds; the others are the edge's own.  One of those: the point,
+   extrapolated to no move.  None: the edge is of one class inside, and
+   the point is the end the cell sees otherwise (the fluid or solid there
+   is a sliver thinner than any move).  Several (a feature thinner than
+   the edge): the one nearest the fluid end, as edge_cut keeps.  Returns
+   0 when the copies do not agree on their crossings. */
+static int own_point(const Ctx *c, int a, const double p0[3], double xhi, int fluid_lo, const double off0[3],
+                     double *s, int *leaf)
+{
+    double xs[3][8], off[3] = {off0[0], off0[1], off0[2]};
+    int n[3], f[3][2], lv[3][8];
+    for (int k = 0; k < 3; k++) {
+        n[k] = copy_crossings(c, a, p0, xhi, off, xs[k], lv[k], 8, f[k]);
+        if (k && (n[k] != n[0] || f[k][0] != f[0][0] || f[k][1] != f[0][1])) return 0;
+        for (int b = 0; b < 3; b++) off[b] *= 2;
+    }
+    int lo = 0, hi = n[0], best = -1;
+    double xf = fluid_lo ? p0[a] : xhi;
+    while (lo < hi) {
+        double t[3] = {xs[0][lo], xs[1][lo], xs[2][lo]};
+        if (closes_on_end(t, p0[a], xhi) != 1) break;
+        lo++;
+    }
+    while (hi > lo) {
+        double t[3] = {xs[0][hi - 1], xs[1][hi - 1], xs[2][hi - 1]};
+        if (closes_on_end(t, p0[a], xhi) != 2) break;
+        hi--;
+    }
+    if (lo == hi) {
+        /* inside the ends' surfaces the edge is of class f ^ (lo odd) */
+        int inner = f[0][0] ^ (lo & 1);
+        *s = inner != fluid_lo ? p0[a] : xhi;
+        *leaf = -1;
+        return 1;
+    }
+    for (int r = lo; r < hi; r++)
+        if (best < 0 || fabs(xs[0][r] - xf) < fabs(xs[0][best] - xf)) best = r;
+    double t[3] = {xs[0][best], xs[1][best], xs[2][best]};
+    *s = settle(c, extrapolate(t, 3), p0[a], xhi);
+    *leaf = lv[0][best];
+    return 1;
+}
+
 /* The point of the edge from corner q of cell (i, j, k) along a, whose
    ends the cell sees differently though neither is fluid for the grid (an
    edge in a face of the geometry on a grid plane, from a corner on it to
-   one beyond its rim): the crossing on copies of the edge moved snap x
-   (cell width) and twice that towards the cell's centre, extrapolated to
-   no move, as offset_cut does; on the solid end when no copy crosses. */
+   one beyond its rim), from copies of the edge moved towards the cell's
+   centre (own_point); where those disagree, the crossing on copies whose
+   ends the cell sees like the edge's, as offset_cut finds it; on the
+   solid end when no copy crosses.  The copies move SKEW times as far
+   along the second axis across the edge as along the first, so that they
+   do not run in a plane of the geometry through the edge (planes with
+   small integer normals, a cone's side): a copy in such a plane has no
+   side to see. */
 static void side_point(Ctx *c, const int ijk[3], int q, int a, int fluid_lo)
 {
-    int64_t v = cell_corner(c, cell_base(c, ijk[0], ijk[1], ijk[2]), q);
+    int64_t v = cell_corner(c, cut_cell_base(c, ijk[0], ijk[1], ijk[2]), q);
     int vi[3];
-    vertex_ijk(c, v, vi);
+    cut_vertex_ijk(c, v, vi);
     double p0[3] = {c->x[0][vi[0]], c->x[1][vi[1]], c->x[2][vi[2]]}, xhi = c->x[a][vi[a] + 1];
-    double h = xhi - p0[a], off[3] = {0, 0, 0}, sk[3], s1;
+    double h = xhi - p0[a], off[3] = {0, 0, 0}, s1;
     for (int b = 0; b < 3; b++)
-        if (b != a) off[b] = ((q >> b) & 1 ? -1 : 1) * OFFSET * c->snap * (c->x[b][ijk[b] + 1] - c->x[b][ijk[b]]);
-    int l1, l2, nk = 0;
-    CutPt *p;
-    while (nk < 3 && shifted_cut(c, a, p0, xhi, fluid_lo, off, &sk[nk], nk ? &l2 : &l1)) {
-        for (int b = 0; b < 3; b++) off[b] *= 2;
-        nk++;
-    }
-    if (nk) {
-        s1 = settle(c, extrapolate(sk, nk), p0[a], xhi);
-    } else if (!offset_cut(c, a, v, fluid_lo, &s1, &l1)) {
+        if (b != a)
+            off[b] = ((q >> b) & 1 ? -1 : 1) * (b == (a + 2) % 3 ? SKEW : 1) * OFFSET * c->snap *
+                     (c->x[b][ijk[b] + 1] - c->x[b][ijk[b]]);
+    int l1 = -1, at = -1, quad = ((q >> (a + 1) % 3) & 1) | ((q >> (a + 2) % 3) & 1) << 1;
+    if (!own_point(c, a, p0, xhi, fluid_lo, off, &s1, &l1) && !offset_cut(c, a, v, fluid_lo, &s1, &l1)) {
         c->st->ninconsistent++;
-        p = cut_insert(c, 3 * v + a);
-        p->side = 1;
-        p->at = fluid_lo ? 1 : 0;
-        p->s = fluid_lo ? xhi : p0[a];
-        return;
+        at = fluid_lo ? 1 : 0;
+        s1 = fluid_lo ? xhi : p0[a];
     }
-    p = cut_insert(c, 3 * v + a);
-    p->side = 1;
-    p->leaf = l1;
-    p->s = fmin(fmax(s1, p0[a]), xhi);
-    if (p->s == p0[a] || p->s - p0[a] < c->snap * h) p->at = 0, p->s = p0[a];
-    else if (p->s == xhi || xhi - p->s < c->snap * h) p->at = 1, p->s = xhi;
+    s1 = fmin(fmax(s1, p0[a]), xhi);
+    if (s1 == p0[a] || s1 - p0[a] < c->snap * h) at = 0, s1 = p0[a];
+    else if (s1 == xhi || xhi - s1 < c->snap * h) at = 1, s1 = xhi;
+    CutPt *p = cut_entry(c, 3 * v + a);
+    if (!p || p->dead) {
+        p = cut_insert(c, 3 * v + a);
+        p->nodef = 1;
+    }
+    if (p->view < 0) {
+        mem_grow((void **)&c->views, &c->views_cap, c->nviews + 1, sizeof *c->views);
+        memset(&c->views[c->nviews], 0, sizeof *c->views);
+        p->view = (int)c->nviews++;
+    }
+    CutView *V = &c->views[p->view];
+    V->s[quad] = s1;
+    V->at[quad] = (signed char)at;
+    V->leaf[quad] = l1;
+    V->pt[quad] = -1;
+    V->has[quad] = 1;
 }
 
-/* Points for the edges whose ends a cell sees differently and the grid
-   does not: made before any face, so every face meets the same points. */
+/* Each cell's own points of the edges whose ends it sees differently and
+   the grid does not, or that run from a vertex on the surface (where the
+   grid line's crossings need not be what the cells on either side of a
+   face of the geometry through the edge see): made before any face, so
+   every face meets the same points.  A vertex counts as on the surface
+   when snapping or the probes found it so, or when it lies on it to the
+   snap distance by the level function: both flow sides then ask the same
+   cells for their views (a vertex on a cap's rim where another part
+   touches the cap is met by no crossing and no probe). */
 static void local_points(Ctx *c)
 {
     for (int k = 0; k < c->n[2]; k++)
         for (int j = 0; j < c->n[1]; j++)
             for (int i = 0; i < c->n[0]; i++) {
-                int64_t v0 = cell_base(c, i, j, k);
-                int m = c->lmask[i + c->n[0] * (j + (int64_t)c->n[1] * k)], g = 0, on = 0;
-                for (int q = 0; q < 8; q++) {
-                    int64_t v = cell_corner(c, v0, q);
-                    g |= (c->cls[v] != 0) << q;
-                    on |= c->onsurf[v];
-                }
-                if (m == g && !on) continue;
+                int64_t v0 = cut_cell_base(c, i, j, k);
+                int m = c->lmask[i + c->n[0] * (j + (int64_t)c->n[1] * k)];
+                if (!m || m == 255) continue;
                 const int ijk[3] = {i, j, k};
                 for (int q = 0; q < 8; q++)
                     for (int a = 0; a < 3; a++) {
                         int r = q | 1 << a;
                         if ((q >> a) & 1 || !(((m >> q) ^ (m >> r)) & 1)) continue;
                         int64_t vq = cell_corner(c, v0, q), vr = cell_corner(c, v0, r);
-                        const CutPt *p = cut_find(c, 3 * vq + a);
-                        /* an edge from a vertex on the surface takes the
-                           first cell's view whoever placed a point on it */
-                        if (p && (p->side || !(c->onsurf[vq] || c->onsurf[vr]))) continue;
+                        if (cut_find(c, 3 * vq + a) && !c->onsurf[vq] && !c->onsurf[vr] && !level_near(c, vq) &&
+                            !level_near(c, vr))
+                            continue;
                         side_point(c, ijk, q, a, (m >> q) & 1);
                     }
             }
 }
 
-/* Corner r (face order) of a cell's face normal to a (hi: its upper
-   face) as a corner of the cell (bit k: the upper end along axis k). */
-static int face_corner(int a, int hi, int r)
+/* Where on its edge (lower end xlo, upper xhi) a point lies. */
+static double point_at(double s, int at, double xlo, double xhi)
 {
-    int u = (a + 1) % 3, w = (a + 2) % 3;
-    return hi << a | (r == 1 || r == 2) << u | (r >= 2) << w;
+    return at < 0 ? s : at ? xhi : xlo;
 }
 
-/* A cell's fluid corners on its face (a, hi), in face order. */
-static int face_bits(int mask, int a, int hi)
+/* Does cell quad of edge (v, a) exist and see the edge's ends
+   differently? */
+static int quad_cuts(const Ctx *c, int64_t v, int a, int quad)
 {
-    int b = 0;
-    for (int r = 0; r < 4; r++) b |= ((mask >> face_corner(a, hi, r)) & 1) << r;
-    return b;
+    int u = (a + 1) % 3, w = (a + 2) % 3, ijk[3];
+    cut_vertex_ijk(c, v, ijk);
+    ijk[u] -= quad & 1;
+    ijk[w] -= quad >> 1;
+    if (ijk[u] < 0 || ijk[w] < 0 || ijk[u] >= c->n[u] || ijk[w] >= c->n[w] || ijk[a] >= c->n[a]) return 0;
+    int m = c->lmask[ijk[0] + c->n[0] * (ijk[1] + (int64_t)c->n[1] * ijk[2])];
+    int q = (quad & 1) << u | (quad >> 1) << w;
+    return ((m >> q) ^ (m >> (q | 1 << a))) & 1;
 }
 
-/* A wall of the cell on a grid face: polygon p, reversed when rev (a
-   lower face of the cell). */
-static void face_wall(Ctx *c, Poly *p, int rev, int cell)
+/* The cells' views of one edge settled: a view within snap x (edge) of
+   the grid's point is that point, views within it of one another are one
+   point, and the grid's point is dropped when every cell that cuts the
+   edge has a view of its own (it would be a point no cell bounds its
+   fluid with). */
+static void settle_views(Ctx *c, CutPt *p)
 {
-    if (rev)
-        for (int l = 0, r = p->n - 1; l < r; l++, r--) {
-            int t = p->pt[l], lf = p->leaf[l];
-            p->pt[l] = p->pt[r], p->leaf[l] = p->leaf[r];
-            p->pt[r] = t, p->leaf[r] = lf;
+    CutView *V = &c->views[p->view];
+    int64_t v = p->key / 3;
+    int a = (int)(p->key % 3), ijk[3];
+    cut_vertex_ijk(c, v, ijk);
+    double xlo = c->x[a][ijk[a]], xhi = c->x[a][ijk[a] + 1], tol = c->snap * (xhi - xlo);
+    int def = !p->dead && !p->nodef, used = 0;
+    double ds = point_at(p->s, p->at, xlo, xhi);
+    for (int k = 0; k < 4; k++) {
+        if (!V->has[k]) continue;
+        double vs = point_at(V->s[k], V->at[k], xlo, xhi);
+        if (def && fabs(vs - ds) <= tol) {
+            V->has[k] = 0;
+            continue;
         }
-    wall_face(c, p->pt, p->leaf, p->n, cell);
+        for (int j = 0; j < k; j++)
+            if (V->has[j] && fabs(vs - point_at(V->s[j], V->at[j], xlo, xhi)) <= tol) {
+                V->s[k] = V->s[j];
+                V->at[k] = V->at[j];
+                V->leaf[k] = V->leaf[j];
+                break;
+            }
+    }
+    for (int k = 0; k < 4; k++) used |= !V->has[k] && quad_cuts(c, v, a, k);
+    if (def && !used) p->nodef = 1;
 }
 
-/* The walls of a cell on a grid face it sees as polygon h, of which its
-   neighbour shares the part q (marching squares of the corners both see:
-   a polygon on points of h, in h's order): one wall for each run of h's
-   points that q skips, closed by q's side across it (with two diagonal
-   corners h may be a hexagon and q a corner of it, so the rest is not a
-   marching-squares polygon of its own).  Returns 0, adding nothing, when
-   q is not such a part of h. */
-static int face_rest(Ctx *c, const Poly *h, const Poly *q, int rev, int cell)
+static void settle_all_views(Ctx *c)
 {
-    char in[MAXP] = {0};
-    int at[MAXP], descents = 0;
-    for (int r = 0; r < q->n; r++) {
-        at[r] = 0;
-        while (at[r] < h->n && h->pt[at[r]] != q->pt[r]) at[r]++;
-        if (at[r] == h->n) return 0;
-        in[at[r]] = 1;
-    }
-    for (int r = 0; r < q->n; r++) descents += at[(r + 1) % q->n] < at[r];
-    if (q->n >= 3 && descents != 1) return 0;
-    if (q->n < 3) {
-        Poly w = *h;
-        face_wall(c, &w, rev, cell);
-        return 1;
-    }
-    for (int i = 0; i < h->n; i++) {
-        if (!in[i] || in[(i + 1) % h->n]) continue;
-        Poly w;
-        w.n = 0;
-        int j = i;
-        do {
-            w.pt[w.n] = h->pt[j];
-            w.leaf[w.n++] = h->leaf[j];
-            j = (j + 1) % h->n;
-        } while (!in[j] && w.n < MAXP - 1);
-        w.pt[w.n] = h->pt[j];
-        w.leaf[w.n++] = h->leaf[j];
-        if (w.n >= 3) face_wall(c, &w, rev, cell);
-    }
-    return 1;
+    for (size_t i = 0; i < c->cap; i++)
+        if (c->tab[i].key >= 0 && c->tab[i].view >= 0) settle_views(c, &c->tab[i]);
 }
 
-/* Grid face (a, hi) of Cartesian cell ci (new cell `cell`): its polygon
-   p as the cell sees it (for the cell's volume and boundary loops), and
-   what of it the cell adds: the face it shares with its upper neighbour
-   (each shared face is added by its lower cell), and the part of p the
-   neighbour does not see, as a wall.  Box sides are box_faces's. */
-static void grid_face(Ctx *c, const int ijk[3], int64_t ci, int64_t v0, int a, int hi, int cell, Poly *p)
+/* The mesh point of view k of edge entry p: the vertex it lies on, or one
+   point for all the edge's views at one place. */
+int cut_view_point(Ctx *c, const CutPt *p, int k)
 {
-    int fa = face_bits(c->lmask[ci], a, hi), nb = ijk[a] + (hi ? 1 : -1);
-    int64_t fv = hi ? v0 + c->sv[a] : v0;
-    face_poly_ms(c, a, fv, fa, p);
-    if (nb < 0 || nb >= c->n[a] || p->n < 3) return;
-    int64_t cn = ci + (hi ? 1 : -1) * c->sc[a];
-    int fb = face_bits(c->lmask[cn], a, !hi);
-    if (fa == fb) {
-        if (hi) meshbuild_face(&c->b, p->pt, p->n, cell, c->cellid[cn], 0);
-        return;
+    CutView *V = &c->views[p->view];
+    int64_t v = p->key / 3;
+    int a = (int)(p->key % 3);
+    if (V->at[k] >= 0) return cut_vertex_point(c, v + (V->at[k] ? c->sv[a] : 0));
+    if (V->pt[k] < 0) {
+        for (int j = 0; j < 4 && V->pt[k] < 0; j++)
+            if (j != k && V->has[j] && V->at[j] < 0 && V->s[j] == V->s[k]) V->pt[k] = V->pt[j];
+        if (V->pt[k] < 0) {
+            int ijk[3];
+            cut_vertex_ijk(c, v, ijk);
+            double x[3] = {c->x[0][ijk[0]], c->x[1][ijk[1]], c->x[2][ijk[2]]};
+            x[a] = V->s[k];
+            V->pt[k] = meshbuild_point(&c->b, x);
+        }
     }
-    Poly q;
-    face_poly_ms(c, a, fv, fa & fb, &q);
-    if (hi && q.n >= 3) meshbuild_face(&c->b, q.pt, q.n, cell, c->cellid[cn], 0);
-    if (!face_rest(c, p, &q, !hi, cell) && (fa & ~fb)) {
-        face_poly_ms(c, a, fv, fa & ~fb, &q);
-        if (q.n >= 3) face_wall(c, &q, !hi, cell);
+    return V->pt[k];
+}
+
+/* The point that cell quad of edge key bounds its fluid with: its own
+   view, else the grid's point; -1 when there is none. */
+int cut_cell_point(Ctx *c, int64_t key, int quad, int *leaf)
+{
+    CutPt *p = cut_entry(c, key);
+    if (!p || p->dead) return -1;
+    if (p->view >= 0 && c->views[p->view].has[quad]) {
+        *leaf = c->views[p->view].leaf[quad];
+        return cut_view_point(c, p, quad);
     }
+    if (p->nodef) return -1;
+    *leaf = p->leaf;
+    return cut_point(c, p);
 }
 
 /* The boundary loops of a cell whose grid-face polygons are pl (lower
@@ -1474,14 +1508,14 @@ static void drop_degenerate(Ctx *c)
     for (int k = 0; k < c->n[2]; k++)
         for (int j = 0; j < c->n[1]; j++)
             for (int i = 0; i < c->n[0]; i++) {
-                int64_t ci = i + c->n[0] * (j + (int64_t)c->n[1] * k), v0 = cell_base(c, i, j, k);
+                int64_t ci = i + c->n[0] * (j + (int64_t)c->n[1] * k), v0 = cut_cell_base(c, i, j, k);
                 int mask = c->lmask[ci];
                 if (!mask || mask == 255) continue;
                 Poly pl[3], pu[3];
                 double vol = 1;
                 for (int a = 0; a < 3; a++) {
-                    face_poly_ms(c, a, v0 + c->sv[a], face_bits(mask, a, 1), &pu[a]);
-                    face_poly_ms(c, a, v0, face_bits(mask, a, 0), &pl[a]);
+                    cut_face_poly(c, a, v0 + c->sv[a], cut_face_bits(mask, a, 1), 0, &pu[a]);
+                    cut_face_poly(c, a, v0, cut_face_bits(mask, a, 0), 1, &pl[a]);
                 }
                 const int ijk[3] = {i, j, k};
                 for (int a = 0; a < 3; a++) vol *= c->x[a][ijk[a] + 1] - c->x[a][ijk[a]];
@@ -1534,16 +1568,16 @@ static void boundary_faces(Ctx *c, Poly *pl, Poly *pu, int cell, int mask)
 static void cell_faces(Ctx *c, int i, int j, int k)
 {
     int ijk[3] = {i, j, k};
-    int64_t ci = i + c->n[0] * (j + (int64_t)c->n[1] * k), v0 = cell_base(c, i, j, k);
+    int64_t ci = i + c->n[0] * (j + (int64_t)c->n[1] * k), v0 = cut_cell_base(c, i, j, k);
     int cell = c->cellid[ci], mask = c->lmask[ci];
     Poly pl[3], pu[3];
     double vol = 1;
     for (int a = 0; a < 3; a++) {
-        grid_face(c, ijk, ci, v0, a, 1, cell, &pu[a]);
+        cut_grid_face(c, ijk, ci, v0, a, 1, cell, &pu[a]);
         /* a whole cell's lower faces matter only where its lower
            neighbour sees less of them (the rest is that cell's to add) */
-        if (mask != 255 || (ijk[a] > 0 && face_bits(c->lmask[ci - c->sc[a]], a, 1) != 15))
-            grid_face(c, ijk, ci, v0, a, 0, cell, &pl[a]);
+        if (mask != 255 || (ijk[a] > 0 && cut_face_bits(c->lmask[ci - c->sc[a]], a, 1) != 15))
+            cut_grid_face(c, ijk, ci, v0, a, 0, cell, &pl[a]);
         c->vref[a] = (c->x[a][ijk[a]] + c->x[a][ijk[a] + 1]) / 2;
         vol *= c->x[a][ijk[a] + 1] - c->x[a][ijk[a]];
     }
@@ -1556,50 +1590,6 @@ static void cell_faces(Ctx *c, int i, int j, int k)
     }
     boundary_faces(c, pl, pu, cell, mask);
     c->cvol[cell] = c->vacc;
-}
-
-/* Side (0..5) of boundary face f of the grid, or -1. */
-static int face_side(const Ctx *c, const Mesh *grid, int f)
-{
-    for (int a = 0; a < 3; a++)
-        for (int hi = 0; hi < 2; hi++) {
-            double xs = c->x[a][hi ? c->n[a] : 0], tol = SIDE_TOL * (c->x[a][c->n[a]] - c->x[a][0]);
-            int on = 1;
-            for (int q = grid->face_off[f]; q < grid->face_off[f + 1] && on; q++)
-                on = fabs(grid->points[3 * (size_t)grid->face_idx[q] + a] - xs) <= tol;
-            if (on) return 2 * a + hi;
-        }
-    return -1;
-}
-
-static int box_faces(Ctx *c, const Mesh *grid, Err *e)
-{
-    for (int p = 0; p < grid->npatches; p++) {
-        const Patch *P = &grid->patches[p];
-        for (int f = P->start; f < P->start + P->size; f++) {
-            int side = face_side(c, grid, f), oc = grid->owner[f];
-            if (side < 0)
-                return err_set(e, NULL, 0, "grid boundary face %d (patch %s) is not on a side of the box", f,
-                               P->name);
-            int a = side / 2, hi = side & 1,
-                ijk[3] = {oc % c->n[0], (oc / c->n[0]) % c->n[1], oc / (c->n[0] * c->n[1])};
-            ijk[a] = hi ? c->n[a] : 0;
-            Poly q;
-            face_poly_ms(c, a, cell_base(c, ijk[0], ijk[1], ijk[2]), face_bits(c->lmask[oc], a, hi), &q);
-            if (q.n < 3 || c->cellid[oc] < 0) continue;
-            if (!hi)
-                for (int l = 1, r = q.n - 1; l < r; l++, r--) {
-                    int t = q.pt[l];
-                    q.pt[l] = q.pt[r];
-                    q.pt[r] = t;
-                }
-            meshbuild_face(&c->b, q.pt, q.n, c->cellid[oc], -1, p);
-            double nv[3] = {0, 0, 0};
-            nv[a] = hi ? 1 : -1;
-            push_wall(c, p, nv);
-        }
-    }
-    return 0;
 }
 
 /* ---- assembly ---- */
@@ -1661,6 +1651,8 @@ static void ctx_free(Ctx *c)
     free(c->vpt);
     free(c->cellid);
     free(c->tab);
+    free(c->views);
+    free(c->cross);
     free(c->wall);
     free(c->cvol);
     meshbuild_free(&c->b);
@@ -1755,6 +1747,7 @@ int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o, Mesh *out, C
     if (c.snap > 0) surface_corners(&c);
     local_masks(&c);
     local_points(&c);
+    settle_all_views(&c);
     drop_degenerate(&c);
     int *parent;
     int nc = number_cells(&c, &parent);
@@ -1768,7 +1761,7 @@ int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o, Mesh *out, C
         for (int j = 0; j < c.n[1]; j++)
             for (int i = 0; i < c.n[0]; i++)
                 if (c.cellid[i + c.n[0] * (j + (int64_t)c.n[1] * k)] >= 0) cell_faces(&c, i, j, k);
-    if (box_faces(&c, grid, e) || meshbuild_finish(&c.b, out, NULL, NULL, e)) {
+    if (cut_box_faces(&c, grid, e) || meshbuild_finish(&c.b, out, NULL, NULL, e)) {
         free(parent);
         ctx_free(&c);
         mesh_free(out);

@@ -27,6 +27,10 @@
 **     With two diagonal fluid corners this joins them through the face (a
 **     hexagon): the thesis's consistent ambiguity rule, which makes the
 **     two cells sharing the face agree, so the boundary is watertight.
+**     Corners on the surface are judged by each cell, and where an edge
+**     lies in a face of the geometry each cell has its own point on it;
+**     a face two cells see differently is split into the part both see
+**     (shared) and walls (doc/theory.md §6, cut_impl.h).
 **  5. Boundary faces: the polygon sides joining two cut points, taken in
 **     reverse, chain into closed loops, one per connected piece of the
 **     boundary in the cell.  A planar loop (within 1e-12 of its size)
