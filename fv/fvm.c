@@ -33,6 +33,7 @@ void fvm_pattern(FvPattern *p, const FvMesh *f, const Interp *ip)
         if (f->empty_face[i]) continue;
         int o = f->m->owner[i], n = face_nbr(f, i);
         for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++) {
+            if (stencil_is_pair(&ip->face, interp_row(i, k))) continue; /* o and n: in the pattern already */
             fvpattern_couple_stencil(p, o, &ip->face, interp_row(i, k));
             if (n >= 0) fvpattern_couple_stencil(p, n, &ip->face, interp_row(i, k));
         }
@@ -68,16 +69,18 @@ static double face_dist(const FvMesh *f, int i)
 static int two_point(const FvMatrix *M, const FvMesh *f, const Stencil *s, int i)
 {
     if (i >= f->ninternal || f->empty_face[i]) return 0;
-    int o = f->m->owner[i], n = f->m->neighbour[i], rp = interp_row(i, INTERP_PLUS), rm = interp_row(i, INTERP_MINUS);
-    return o < M->nrows && n < M->nrows && M->face_pos[2 * i] >= 0 && M->face_pos[2 * i + 1] >= 0 &&
-           s->off[rp + 1] - s->off[rp] == 1 && s->src[s->off[rp]] == n && s->w[s->off[rp]] == 1.0 &&
-           s->off[rm + 1] - s->off[rm] == 1 && s->src[s->off[rm]] == o && s->w[s->off[rm]] == 1.0;
+    int o = f->m->owner[i], n = f->m->neighbour[i];
+    StencilRow p, q;
+    stencil_row(s, interp_row(i, INTERP_PLUS), &p);
+    stencil_row(s, interp_row(i, INTERP_MINUS), &q);
+    return o < M->nrows && n < M->nrows && M->face_pos[2 * i] >= 0 && M->face_pos[2 * i + 1] >= 0 && p.n == 1 &&
+           p.src[0] == n && p.w[0] == 1.0 && q.n == 1 && q.src[0] == o && q.w[0] == 1.0;
 }
 
 /* Entries of face i's PLUS and MINUS rows. */
 static int face_entries(const Stencil *s, int i)
 {
-    return s->off[interp_row(i, INTERP_MINUS) + 1] - s->off[interp_row(i, INTERP_PLUS)];
+    return stencil_row_len(s, interp_row(i, INTERP_PLUS)) + stencil_row_len(s, interp_row(i, INTERP_MINUS));
 }
 
 /* Positions of the PLUS and MINUS rows' entries of face i, from
@@ -87,10 +90,14 @@ static int face_positions(Fvm *d, const FvMatrix *M, int i)
     const FvMesh *f = d->f;
     const Stencil *s = &d->ip->face;
     int o = f->m->owner[i], n = face_nbr(f, i), missing = 0, q = d->pos_off[i];
-    for (int j = s->off[interp_row(i, INTERP_PLUS)]; j < s->off[interp_row(i, INTERP_MINUS) + 1]; j++, q++) {
-        d->pos_own[q] = source_pos(M, f, o, s->src[j]);
-        d->pos_nbr[q] = source_pos(M, f, n, s->src[j]);
-        missing += (o < M->nrows && d->pos_own[q] < 0) + (n >= 0 && n < M->nrows && d->pos_nbr[q] < 0);
+    for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++) {
+        StencilRow row;
+        stencil_row(s, interp_row(i, k), &row);
+        for (int j = 0; j < row.n; j++, q++) {
+            d->pos_own[q] = source_pos(M, f, o, row.src[j]);
+            d->pos_nbr[q] = source_pos(M, f, n, row.src[j]);
+            missing += (o < M->nrows && d->pos_own[q] < 0) + (n >= 0 && n < M->nrows && d->pos_nbr[q] < 0);
+        }
     }
     return missing;
 }
@@ -121,9 +128,10 @@ static int face_has_rhs(const Fvm *d, int i)
     const Stencil *s = &d->ip->face;
     if (i >= f->ninternal && d->bc->fixed_grad[i - f->ninternal]) return 1;
     for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++) {
-        int r = interp_row(i, k);
-        for (int j = s->off[r]; j < s->off[r + 1]; j++)
-            if (s->src[j] >= f->ncells) return 1;
+        StencilRow row;
+        stencil_row(s, interp_row(i, k), &row);
+        for (int j = 0; j < row.n; j++)
+            if (row.src[j] >= f->ncells) return 1;
     }
     return 0;
 }
@@ -179,29 +187,26 @@ enum { FVM_MATRIX = 1, FVM_RHS = 2 };
    and b): the parts `what` asks for. */
 static inline void add_row(FvMatrix *M, const Fvm *d, const int *pos, int row, int r, int k, double c, int what)
 {
-    const Stencil *s = &d->ip->face;
     const Bc *bc = d->bc;
-    int nc = d->f->ncells, j0 = s->off[r];
-    for (int j = j0; j < s->off[r + 1]; j++) {
-        double w = c * s->w[j];
-        int src = s->src[j];
+    int nc = d->f->ncells;
+    StencilRow sr;
+    stencil_row(&d->ip->face, r, &sr);
+    for (int j = 0; j < sr.n; j++) {
+        double w = c * sr.w[j];
+        int src = sr.src[j];
         if (src < nc) {
-            if (what & FVM_MATRIX) M->val[pos[j - j0]] += w;
+            if (what & FVM_MATRIX) M->val[pos[j]] += w;
             continue;
         }
         size_t bk = (size_t)(src - nc) * (size_t)bc->width + (size_t)k;
-        if (what & FVM_MATRIX) M->val[pos[j - j0]] += w * bc->a[bk];
+        if (what & FVM_MATRIX) M->val[pos[j]] += w * bc->a[bk];
         if (what & FVM_RHS) M->rhs[row] -= w * bc->b[bk];
     }
 }
 
 /* The number of entries of face i's PLUS row (its MINUS row's positions
    follow them). */
-static inline int plus_len(const Fvm *d, int i)
-{
-    const Stencil *s = &d->ip->face;
-    return s->off[interp_row(i, INTERP_PLUS) + 1] - s->off[interp_row(i, INTERP_PLUS)];
-}
+static inline int plus_len(const Fvm *d, int i) { return stencil_row_len(&d->ip->face, interp_row(i, INTERP_PLUS)); }
 
 /* A Neumann boundary face: F = G |S| (ga u(MINUS) + gb). */
 static inline void neumann_face(const Fvm *d, FvMatrix *M, int i, int k, double gamma, int what)
@@ -284,19 +289,20 @@ int fvm_same_matrix(const Fvm *d, int k1, int k2)
 /* Value of row r on component k of u (boundary sources: a u_owner + b). */
 static double row_value(const Fvm *d, const double *u, int r, int k)
 {
-    const Stencil *s = &d->ip->face;
     const Bc *bc = d->bc;
     const FvMesh *f = d->f;
     int nc = f->ncells, wd = bc->width;
+    StencilRow sr;
+    stencil_row(&d->ip->face, r, &sr);
     double v = 0;
-    for (int j = s->off[r]; j < s->off[r + 1]; j++) {
-        int src = s->src[j];
+    for (int j = 0; j < sr.n; j++) {
+        int src = sr.src[j];
         if (src < nc) {
-            v += s->w[j] * u[(size_t)src * wd + k];
+            v += sr.w[j] * u[(size_t)src * wd + k];
             continue;
         }
         size_t bk = (size_t)(src - nc) * (size_t)wd + (size_t)k;
-        v += s->w[j] * (bc->a[bk] * u[(size_t)f->m->owner[f->ninternal + src - nc] * wd + k] + bc->b[bk]);
+        v += sr.w[j] * (bc->a[bk] * u[(size_t)f->m->owner[f->ninternal + src - nc] * wd + k] + bc->b[bk]);
     }
     return v;
 }

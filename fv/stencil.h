@@ -13,6 +13,24 @@
 ** a fixed value (right-hand side) or, say, the owner's value (zero
 ** gradient: a matrix entry on the owner).
 **
+** Pair rows.  Most rows of the face stencils are trivial: on a face
+** between two whole Cartesian cells (eq. 4.61) the three rows are the
+** mean of the two cells, the neighbour alone and the owner alone.  Stored,
+** they would cost four entries (48 bytes) a face, 150 bytes a cell of a
+** 3-D block grid, for numbers the grid already holds.  So a stencil may
+** name pairs of sources (stencil_pairs: a[p], b[p], arrays the caller
+** owns, such as a grid's owner and neighbour) with STENCIL_GROUP rows per
+** pair, row r = STENCIL_GROUP p + j, and store such a row empty
+** (stencil_pair_row): it then means
+**   j = STENCIL_PAIR_MEAN   0.5 x(a[p]) + 0.5 x(b[p])
+**   j = STENCIL_PAIR_B      x(b[p])
+**   j = STENCIL_PAIR_A      x(a[p])
+** with the entries in that order (a first), exactly as if they were
+** stored, so every sum over a row is the same to the bit.  stencil_apply
+** honours them; a reader that walks a row's entries takes them from
+** stencil_row, which hands out the stored entries or makes the pair's.
+** Without pairs an empty row is a zero row.
+**
 ** Rows are appended in order (stencil_add, then stencil_end_row); the
 ** arrays grow as needed.
 */
@@ -21,13 +39,27 @@
 
 #include <stddef.h>
 
+enum { STENCIL_PAIR_MEAN, STENCIL_PAIR_B, STENCIL_PAIR_A, STENCIL_GROUP };
+
 typedef struct Stencil {
     int nrows;
     int *off;          /* nrows + 1 */
     int *src;          /* off[nrows] entries */
     double *w;
     size_t cap, row_cap;
+    const int *pa, *pb;  /* the pairs' sources (stencil_pairs), or NULL */
 } Stencil;
+
+/* The entries of one row (stencil_row): n sources src[0 .. n-1] with
+   weights w[...], pointing into the stencil or, for a pair row, into
+   psrc and pw (so a StencilRow is filled in place, never copied). */
+typedef struct StencilRow {
+    int n;
+    const int *src;
+    const double *w;
+    int psrc[2];
+    double pw[2];
+} StencilRow;
 
 void stencil_init(Stencil *s);
 void stencil_free(Stencil *s);
@@ -37,16 +69,49 @@ void stencil_add(Stencil *s, int src, double w);
 /* Closes the row being built; returns its index. */
 int stencil_end_row(Stencil *s);
 
+/* Pair p has sources a[p] and b[p] (the arrays must outlive s). */
+void stencil_pairs(Stencil *s, const int *a, const int *b);
+/* Closes the row being built, which must be empty and row STENCIL_GROUP
+   p + j of a pair, as that pair's row j; returns its index. */
+int stencil_pair_row(Stencil *s);
+
+/* Is row r a pair row (stored empty, pairs named)? */
+static inline int stencil_is_pair(const Stencil *s, int r) { return s->pa && s->off[r] == s->off[r + 1]; }
+
+/* The entries of row r into *row. */
+static inline void stencil_row(const Stencil *s, int r, StencilRow *row)
+{
+    int k = s->off[r];
+    row->n = s->off[r + 1] - k;
+    row->src = s->src + k;
+    row->w = s->w + k;
+    if (row->n || !s->pa) return;
+    int p = r / STENCIL_GROUP, j = r - STENCIL_GROUP * p;
+    if (j != STENCIL_PAIR_B) row->psrc[row->n] = s->pa[p], row->pw[row->n++] = j == STENCIL_PAIR_MEAN ? 0.5 : 1.0;
+    if (j != STENCIL_PAIR_A) row->psrc[row->n] = s->pb[p], row->pw[row->n++] = j == STENCIL_PAIR_MEAN ? 0.5 : 1.0;
+    row->src = row->psrc;
+    row->w = row->pw;
+}
+
+/* Number of entries of row r (a pair row's 2 or 1). */
+static inline int stencil_row_len(const Stencil *s, int r)
+{
+    int n = s->off[r + 1] - s->off[r];
+    return n || !s->pa ? n : r % STENCIL_GROUP == STENCIL_PAIR_MEAN ? 2 : 1;
+}
+
 /* Applies row r to cell values xc (ncells of them, stride 1) and boundary
    values xb (one per boundary face; NULL: a boundary source is an error
    the caller ruled out).  Inline: the solvers call it per face and
    component in their time loops. */
 static inline double stencil_apply(const Stencil *s, int r, int ncells, const double *xc, const double *xb)
 {
+    StencilRow row;
+    stencil_row(s, r, &row);
     double v = 0;
-    for (int k = s->off[r]; k < s->off[r + 1]; k++) {
-        int q = s->src[k];
-        v += s->w[k] * (q < ncells ? xc[q] : xb[q - ncells]);
+    for (int k = 0; k < row.n; k++) {
+        int q = row.src[k];
+        v += row.w[k] * (q < ncells ? xc[q] : xb[q - ncells]);
     }
     return v;
 }
