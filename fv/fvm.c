@@ -126,7 +126,7 @@ static int face_has_rhs(const Fvm *d, int i)
 {
     const FvMesh *f = d->f;
     const Stencil *s = &d->ip->face;
-    if (i >= f->ninternal && d->bc->fixed_grad[i - f->ninternal]) return 1;
+    if (i >= f->ninternal && d->bc->fixed_grad[bc_slot(d->bc, i - f->ninternal)]) return 1;
     for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++) {
         StencilRow row;
         stencil_row(s, interp_row(i, k), &row);
@@ -198,7 +198,7 @@ static inline void add_row(FvMatrix *M, const Fvm *d, const int *pos, int row, i
             if (what & FVM_MATRIX) M->val[pos[j]] += w;
             continue;
         }
-        size_t bk = (size_t)(src - nc) * (size_t)bc->width + (size_t)k;
+        size_t bk = (size_t)bc_slot(bc, src - nc) * (size_t)bc->width + (size_t)k;
         if (what & FVM_MATRIX) M->val[pos[j]] += w * bc->a[bk];
         if (what & FVM_RHS) M->rhs[row] -= w * bc->b[bk];
     }
@@ -213,8 +213,8 @@ static inline void neumann_face(const Fvm *d, FvMatrix *M, int i, int k, double 
 {
     const FvMesh *f = d->f;
     const Bc *bc = d->bc;
-    int b = i - f->ninternal, o = f->m->owner[i];
-    size_t bk = (size_t)b * (size_t)bc->width + (size_t)k;
+    int o = f->m->owner[i];
+    size_t bk = (size_t)bc_slot(bc, i - f->ninternal) * (size_t)bc->width + (size_t)k;
     double G = gamma * f->mag_sf[i];
     if (what & FVM_RHS) M->rhs[o] += G * bc->gb[bk];
     if (bc->ga[bk] != 0)
@@ -227,7 +227,7 @@ static inline void face_terms(const Fvm *d, FvMatrix *M, int i, int k, double ga
 {
     const FvMesh *f = d->f;
     int o = f->m->owner[i], n = face_nbr(f, i);
-    if (i >= f->ninternal && d->bc->fixed_grad[i - f->ninternal]) {
+    if (i >= f->ninternal && d->bc->fixed_grad[bc_slot(d->bc, i - f->ninternal)]) {
         if (o < M->nrows) neumann_face(d, M, i, k, gamma, what);
         return;
     }
@@ -275,14 +275,9 @@ int fvm_same_matrix(const Fvm *d, int k1, int k2)
 {
     const Bc *bc = d->bc;
     size_t w = (size_t)bc->width;
-    for (int p = 0; p < bc->npatches; p++) {
-        const BcPatch *bp = &bc->patch[p];
-        if (bp->kind == BC_EMPTY) continue; /* never assembled, never a source */
-        for (int b = bp->start - d->f->ninternal; b < bp->start - d->f->ninternal + bp->size; b++)
-            if (bc->a[b * w + (size_t)k1] != bc->a[b * w + (size_t)k2] ||
-                bc->ga[b * w + (size_t)k1] != bc->ga[b * w + (size_t)k2])
-                return 0;
-    }
+    for (int s = 0; s < bc->nslots; s++) /* empty faces have none: never assembled, never a source */
+        if (bc->a[s * w + (size_t)k1] != bc->a[s * w + (size_t)k2] || bc->ga[s * w + (size_t)k1] != bc->ga[s * w + (size_t)k2])
+            return 0;
     return 1;
 }
 
@@ -301,7 +296,7 @@ static double row_value(const Fvm *d, const double *u, int r, int k)
             v += sr.w[j] * u[(size_t)src * wd + k];
             continue;
         }
-        size_t bk = (size_t)(src - nc) * (size_t)wd + (size_t)k;
+        size_t bk = (size_t)bc_slot(bc, src - nc) * (size_t)wd + (size_t)k;
         v += sr.w[j] * (bc->a[bk] * u[(size_t)f->m->owner[f->ninternal + src - nc] * wd + k] + bc->b[bk]);
     }
     return v;
@@ -316,9 +311,9 @@ void fvm_face_flux(const Fvm *d, const double *u, int k, double gamma, double *f
         flux[i] = 0;
         if (f->empty_face[i]) continue;
         double G = gamma * f->mag_sf[i];
-        int b = i - f->ninternal;
-        if (i >= f->ninternal && bc->fixed_grad[b]) {
-            size_t bk = (size_t)b * (size_t)wd + (size_t)k;
+        int s = i >= f->ninternal ? bc_slot(bc, i - f->ninternal) : -1;
+        if (s >= 0 && bc->fixed_grad[s]) {
+            size_t bk = (size_t)s * (size_t)wd + (size_t)k;
             flux[i] = G * (bc->gb[bk] + (bc->ga[bk] != 0 ? bc->ga[bk] * row_value(d, u, interp_row(i, INTERP_MINUS), k) : 0));
         } else {
             flux[i] = G / d->dist[i] *
