@@ -52,6 +52,10 @@ typedef struct FvMesh {
                              cyclic faces included */
     int *cyc_face;        /* nboundary: the partner face of a cyclic face,
                              else -1 */
+    int *cyc_base;        /* npatches: where a cyclic patch's translations
+                             start in cyc_shift, else -1 */
+    double *cyc_shift;    /* 3 per face of a cyclic patch: its periodic
+                             translation (fvmesh_cyclic_shift) */
     double hcart[3];      /* smallest Cartesian spacing per axis, or 0 */
 } FvMesh;
 
@@ -60,6 +64,18 @@ typedef struct FvMesh {
    (zero area or volume) or a node on a face's plane. */
 int fvmesh_init(FvMesh *f, Mesh *m, Err *e);
 void fvmesh_free(FvMesh *f);
+
+/* The end of the set-up: frees what only building the scheme reads, once
+   every builder has run (bc_init, bc_check_open, interp_init, hydro_init,
+   fvm_pattern and fvm_init, tvd_init): FvMesh's nf, h, ht and
+   cartesian_face, and the Mesh's face_centre, boundary_normal and cell
+   face lists (cell_off, cell_faces), all then NULL: about 220 bytes a
+   cell of a 3-D block grid.  What the time steps and the writers read
+   stays: the areas, volumes, nodes, owner and neighbour, the faces and
+   points, the flags, the periodic translations (fvmesh_across and
+   fvmesh_cyclic_shift keep working).  interp_point, which builds at the
+   points of the faces, cannot be called afterwards. */
+void fvmesh_end_setup(FvMesh *f);
 
 /* Cartesian data contract present (cartesianGrid and cartesianCells)? */
 int fvmesh_has_cartesian(const FvMesh *f);
