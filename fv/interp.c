@@ -415,11 +415,8 @@ static void face_rows(Interp *ip)
 {
     const FvMesh *f = ip->f;
     for (int i = 0; i < f->nfaces; i++) {
-        if (f->empty_face[i]) {
-            for (int k = 0; k < INTERP_NPOINTS; k++) {
-                stencil_add(&ip->face, f->m->owner[i], 1.0);
-                stencil_end_row(&ip->face);
-            }
+        if (f->empty_face[i]) { /* no flux: zero rows, which nothing reads */
+            for (int k = 0; k < INTERP_NPOINTS; k++) stencil_end_row(&ip->face);
             continue;
         }
         ip->st.ncartesian += f->cartesian_face[i];
@@ -436,13 +433,15 @@ static void face_rows(Interp *ip)
     }
     Stencil *s = &ip->face;
     ip->st.nrows = s->nrows;
-    long entries = 0;
+    long entries = 0, rows = 0;
     for (int r = 0; r < s->nrows; r++) {
+        if (f->empty_face[r / INTERP_NPOINTS]) continue;
         int n = stencil_row_len(s, r);
         entries += n;
+        rows++;
         if (n > ip->st.max_size) ip->st.max_size = n;
     }
-    ip->st.mean_size = s->nrows ? (double)entries / s->nrows : 0;
+    ip->st.mean_size = rows ? (double)entries / rows : 0;
 }
 
 /* The search index and what hangs on it (multilinear's lattice, the wall
@@ -487,7 +486,7 @@ int interp_init(Interp *ip, const FvMesh *f, const InterpOpts *o, const char *gr
         return -1;
     }
     stencil_init(&ip->face);
-    stencil_pairs(&ip->face, f->m->owner, f->m->neighbour);
+    stencil_pairs(&ip->face, f->m->owner, f->m->neighbour, f->ninternal);
     face_rows(ip);
     index_drop(ip);
     return 0;

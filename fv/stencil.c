@@ -52,10 +52,11 @@ int stencil_end_row(Stencil *s)
     return r;
 }
 
-void stencil_pairs(Stencil *s, const int *a, const int *b)
+void stencil_pairs(Stencil *s, const int *a, const int *b, int n)
 {
     s->pa = a;
     s->pb = b;
+    s->npairs = n;
 }
 
 int stencil_pair_row(Stencil *s) { return stencil_end_row(s); }

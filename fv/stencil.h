@@ -18,10 +18,10 @@
 ** mean of the two cells, the neighbour alone and the owner alone.  Stored,
 ** they would cost four entries (48 bytes) a face, 150 bytes a cell of a
 ** 3-D block grid, for numbers the grid already holds.  So a stencil may
-** name pairs of sources (stencil_pairs: a[p], b[p], arrays the caller
-** owns, such as a grid's owner and neighbour) with STENCIL_GROUP rows per
-** pair, row r = STENCIL_GROUP p + j, and store such a row empty
-** (stencil_pair_row): it then means
+** name npairs pairs of sources (stencil_pairs: a[p], b[p], arrays the
+** caller owns, such as a grid's owner and neighbour of its internal
+** faces) with STENCIL_GROUP rows per pair, row r = STENCIL_GROUP p + j,
+** and store such a row empty (stencil_pair_row): it then means
 **   j = STENCIL_PAIR_MEAN   0.5 x(a[p]) + 0.5 x(b[p])
 **   j = STENCIL_PAIR_B      x(b[p])
 **   j = STENCIL_PAIR_A      x(a[p])
@@ -29,7 +29,8 @@
 ** stored, so every sum over a row is the same to the bit.  stencil_apply
 ** honours them; a reader that walks a row's entries takes them from
 ** stencil_row, which hands out the stored entries or makes the pair's.
-** Without pairs an empty row is a zero row.
+** Any other empty row (no pairs named, or r beyond the pairs' rows) is a
+** zero row.
 **
 ** Rows are appended in order (stencil_add, then stencil_end_row); the
 ** arrays grow as needed.
@@ -48,6 +49,7 @@ typedef struct Stencil {
     double *w;
     size_t cap, row_cap;
     const int *pa, *pb;  /* the pairs' sources (stencil_pairs), or NULL */
+    int npairs;          /* rows 0 .. STENCIL_GROUP npairs - 1 may be pair rows */
 } Stencil;
 
 /* The entries of one row (stencil_row): n sources src[0 .. n-1] with
@@ -69,14 +71,17 @@ void stencil_add(Stencil *s, int src, double w);
 /* Closes the row being built; returns its index. */
 int stencil_end_row(Stencil *s);
 
-/* Pair p has sources a[p] and b[p] (the arrays must outlive s). */
-void stencil_pairs(Stencil *s, const int *a, const int *b);
+/* Pair p (0 <= p < n) has sources a[p] and b[p] (the arrays must outlive s). */
+void stencil_pairs(Stencil *s, const int *a, const int *b, int n);
 /* Closes the row being built, which must be empty and row STENCIL_GROUP
    p + j of a pair, as that pair's row j; returns its index. */
 int stencil_pair_row(Stencil *s);
 
-/* Is row r a pair row (stored empty, pairs named)? */
-static inline int stencil_is_pair(const Stencil *s, int r) { return s->pa && s->off[r] == s->off[r + 1]; }
+/* Is row r a pair row (stored empty, a row of a pair)? */
+static inline int stencil_is_pair(const Stencil *s, int r)
+{
+    return r < STENCIL_GROUP * s->npairs && s->off[r] == s->off[r + 1];
+}
 
 /* The entries of row r into *row. */
 static inline void stencil_row(const Stencil *s, int r, StencilRow *row)
@@ -85,7 +90,7 @@ static inline void stencil_row(const Stencil *s, int r, StencilRow *row)
     row->n = s->off[r + 1] - k;
     row->src = s->src + k;
     row->w = s->w + k;
-    if (row->n || !s->pa) return;
+    if (row->n || r >= STENCIL_GROUP * s->npairs) return;
     int p = r / STENCIL_GROUP, j = r - STENCIL_GROUP * p;
     if (j != STENCIL_PAIR_B) row->psrc[row->n] = s->pa[p], row->pw[row->n++] = j == STENCIL_PAIR_MEAN ? 0.5 : 1.0;
     if (j != STENCIL_PAIR_A) row->psrc[row->n] = s->pb[p], row->pw[row->n++] = j == STENCIL_PAIR_MEAN ? 0.5 : 1.0;
@@ -97,7 +102,7 @@ static inline void stencil_row(const Stencil *s, int r, StencilRow *row)
 static inline int stencil_row_len(const Stencil *s, int r)
 {
     int n = s->off[r + 1] - s->off[r];
-    return n || !s->pa ? n : r % STENCIL_GROUP == STENCIL_PAIR_MEAN ? 2 : 1;
+    return n || r >= STENCIL_GROUP * s->npairs ? n : r % STENCIL_GROUP == STENCIL_PAIR_MEAN ? 2 : 1;
 }
 
 /* Applies row r to cell values xc (ncells of them, stride 1) and boundary

@@ -75,11 +75,15 @@ static void opts(InterpOpts *o, int method)
     o->method = method;
 }
 
-/* Largest |row sum - 1| over every row of the face stencils. */
+/* Largest |row sum - 1| over every row of the face stencils (empty
+   faces' rows are zero rows: |sum|). */
 static double worst_sum(const Interp *ip)
 {
     double w = 0;
-    for (int r = 0; r < ip->face.nrows; r++) w = fmax(w, fabs(stencil_row_sum(&ip->face, r) - 1));
+    for (int r = 0; r < ip->face.nrows; r++) {
+        int empty = ip->f->empty_face[r / INTERP_NPOINTS]; /* no flux: zero rows */
+        w = fmax(w, fabs(stencil_row_sum(&ip->face, r) - !empty));
+    }
     return w;
 }
 

@@ -40,7 +40,7 @@ TEST(pair_rows)
     Stencil st, pr;
     stencil_init(&st);
     stencil_init(&pr);
-    stencil_pairs(&pr, a, b);
+    stencil_pairs(&pr, a, b, NP);
     for (int p = 0; p < NP; p++) {
         a[p] = p % 7;
         b[p] = (3 * p + 1) % 7;
