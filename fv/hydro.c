@@ -207,6 +207,7 @@ void hydro_init(Hydro *h, const FvMesh *f, const Interp *ip, const double g[3], 
     gravity_vectors(h);
     stencil_init(&h->wall);
     for (int b = 0; b < f->nboundary; b++) wall_row(h, b);
+    stencil_trim(&h->wall);
 }
 
 void hydro_free(Hydro *h)

@@ -488,6 +488,7 @@ int interp_init(Interp *ip, const FvMesh *f, const InterpOpts *o, const char *gr
     stencil_init(&ip->face);
     stencil_pairs(&ip->face, f->m->owner, f->m->neighbour, f->ninternal);
     face_rows(ip);
+    stencil_trim(&ip->face);
     index_drop(ip);
     return 0;
 }

@@ -52,6 +52,16 @@ int stencil_end_row(Stencil *s)
     return r;
 }
 
+void stencil_trim(Stencil *s)
+{
+    size_t n = (size_t)s->off[s->nrows + 1];
+    s->row_cap = (size_t)s->nrows + 2;
+    s->off = mem_realloc(s->off, s->row_cap * sizeof *s->off);
+    s->cap = n + 1;
+    s->src = mem_realloc(s->src, (n + 1) * sizeof *s->src);
+    s->w = mem_realloc(s->w, (n + 1) * sizeof *s->w);
+}
+
 void stencil_pairs(Stencil *s, const int *a, const int *b, int n)
 {
     s->pa = a;

@@ -71,6 +71,10 @@ void stencil_add(Stencil *s, int src, double w);
 /* Closes the row being built; returns its index. */
 int stencil_end_row(Stencil *s);
 
+/* Gives back the room the arrays grew into beyond the rows built (rows
+   may still be added later). */
+void stencil_trim(Stencil *s);
+
 /* Pair p (0 <= p < n) has sources a[p] and b[p] (the arrays must outlive s). */
 void stencil_pairs(Stencil *s, const int *a, const int *b, int n);
 /* Closes the row being built, which must be empty and row STENCIL_GROUP

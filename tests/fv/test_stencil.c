@@ -13,6 +13,7 @@ TEST(rows)
     Stencil s;
     stencil_init(&s);
     for (int r = 0; r < 1000; r++) {
+        if (r == 500) stencil_trim(&s); /* rows go on after a trim */
         stencil_add(&s, r % 7, 0.25);
         stencil_add(&s, 7 + r % 3, 0.5);
         stencil_add(&s, r % 7, 0.25);
