@@ -305,16 +305,16 @@ void bc_update(Bc *bc, const double *v)
     }
 }
 
-/* Slots for the faces of the patches that are not empty, in face order. */
+/* The coefficients of the faces of the patches that are not empty
+   (FvMesh.bslot: the empty patches are the grid's, pass 1 checked). */
 static void allocate(Bc *bc, int w)
 {
-    int ns = 0;
+    const FvMesh *fm = bc->fm;
+    int ns = bc->nslots = fm->nslots;
     for (int p = 0; p < bc->npatches; p++) {
         BcPatch *bp = &bc->patch[p];
-        bp->slot = bp->kind == BC_EMPTY ? -1 : ns;
-        if (bp->slot >= 0) ns += bp->size;
+        bp->slot = bp->kind == BC_EMPTY || bp->size == 0 ? -1 : fm->bslot[bp->start - fm->ninternal];
     }
-    bc->nslots = ns;
     size_t n = (size_t)ns * (size_t)w;
     bc->a = MEM_NEW(double, n);
     bc->b = MEM_NEW(double, n);

@@ -108,15 +108,11 @@ typedef struct Bc {
 } Bc;
 
 /* Where boundary face b's coefficients are: its index among the faces of
-   the patches that are not empty (slots follow the face order), or -1
-   for a face of an empty patch, which carries no coefficients (the front
-   and back of a 2-D grid are two faces a cell: 440 bytes a cell of
-   coefficients no term reads). */
-static inline int bc_slot(const Bc *bc, int b)
-{
-    const BcPatch *p = &bc->patch[bc->fm->face_patch[b]];
-    return p->slot < 0 ? -1 : p->slot + b - (p->start - bc->fm->ninternal);
-}
+   the patches that are not empty (FvMesh.bslot), or -1 for a face of an
+   empty patch, which carries no coefficients (the front and back of a 2-D
+   grid are two faces a cell: 440 bytes a cell of coefficients no term
+   reads). */
+static inline int bc_slot(const Bc *bc, int b) { return bc->fm->bslot[b]; }
 
 /* The keyword of a kind ("fixedValue", ...). */
 const char *bc_kind_name(BcKind k);

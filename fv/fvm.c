@@ -9,7 +9,7 @@
 ** itself.  Each entry's positions in the owner's and the neighbour's rows
 ** are kept (pos_own, pos_nbr), so the assembly of a time step is one pass
 ** over the stencil entries; the faces between whole Cartesian cells, whose
-** rows are the two cells themselves with weight 1 (two_point), keep no
+** rows are the two cells themselves with weight 1 (FVM_TWO_POINT), keep no
 ** positions: theirs are the diagonals and the matrix's face positions.
 ** That keeps 8 bytes per PLUS and MINUS entry off most faces of a cut
 ** grid (97 bytes a cell on a 3-D block grid).  One body, face_terms,
@@ -107,13 +107,15 @@ static void face_layout(Fvm *d, const FvMatrix *M)
 {
     const FvMesh *f = d->f;
     const Stencil *s = &d->ip->face;
-    d->two_point = mem_calloc((size_t)f->nfaces + 1, 1);
+    d->kind = mem_calloc((size_t)f->nfaces + 1, 1);
     d->pos_off = mem_alloc(sizeof(int) * ((size_t)f->nfaces + 1));
     int q = 0;
     for (int i = 0; i < f->nfaces; i++) {
         d->pos_off[i] = q;
-        d->two_point[i] = (char)two_point(M, f, s, i);
-        if (!f->empty_face[i] && !d->two_point[i]) q += face_entries(s, i);
+        d->kind[i] = (char)(two_point(M, f, s, i) ? FVM_TWO_POINT : 0);
+        if (i >= f->ninternal && !f->empty_face[i] && d->bc->fixed_grad[bc_slot(d->bc, i - f->ninternal)])
+            d->kind[i] = FVM_NEUMANN;
+        if (!f->empty_face[i] && d->kind[i] != FVM_TWO_POINT) q += face_entries(s, i);
     }
     d->pos_off[f->nfaces] = q;
     d->pos_own = mem_alloc(sizeof(int) * ((size_t)q + 1));
@@ -126,7 +128,7 @@ static int face_has_rhs(const Fvm *d, int i)
 {
     const FvMesh *f = d->f;
     const Stencil *s = &d->ip->face;
-    if (i >= f->ninternal && d->bc->fixed_grad[bc_slot(d->bc, i - f->ninternal)]) return 1;
+    if (d->kind[i] == FVM_NEUMANN) return 1;
     for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++) {
         StencilRow row;
         stencil_row(s, interp_row(i, k), &row);
@@ -157,7 +159,7 @@ int fvm_init(Fvm *d, const FvMatrix *M, const FvMesh *f, const Interp *ip, const
     int missing = 0;
     for (int i = 0; i < f->nfaces; i++) {
         d->dist[i] = face_dist(f, i);
-        if (!f->empty_face[i] && !d->two_point[i]) missing += face_positions(d, M, i);
+        if (!f->empty_face[i] && d->kind[i] != FVM_TWO_POINT) missing += face_positions(d, M, i);
     }
     if (missing) {
         fvm_free(d);
@@ -174,7 +176,7 @@ void fvm_free(Fvm *d)
     free(d->pos_own);
     free(d->pos_nbr);
     free(d->pos_off);
-    free(d->two_point);
+    free(d->kind);
     free(d->rhs_face);
     memset(d, 0, sizeof *d);
 }
@@ -184,22 +186,21 @@ enum { FVM_MATRIX = 1, FVM_RHS = 2 };
 
 /* Adds c * (row r's value) to matrix row `row`, pos the positions of
    r's entries in it (boundary sources through the boundary condition's a
-   and b): the parts `what` asks for. */
+   and b): the parts `what` asks for.  Not a pair row (face_terms). */
 static inline void add_row(FvMatrix *M, const Fvm *d, const int *pos, int row, int r, int k, double c, int what)
 {
+    const Stencil *s = &d->ip->face;
     const Bc *bc = d->bc;
-    int nc = d->f->ncells;
-    StencilRow sr;
-    stencil_row(&d->ip->face, r, &sr);
-    for (int j = 0; j < sr.n; j++) {
-        double w = c * sr.w[j];
-        int src = sr.src[j];
+    int nc = d->f->ncells, j0 = s->off[r];
+    for (int j = j0; j < s->off[r + 1]; j++) {
+        double w = c * s->w[j];
+        int src = s->src[j];
         if (src < nc) {
-            if (what & FVM_MATRIX) M->val[pos[j]] += w;
+            if (what & FVM_MATRIX) M->val[pos[j - j0]] += w;
             continue;
         }
         size_t bk = (size_t)bc_slot(bc, src - nc) * (size_t)bc->width + (size_t)k;
-        if (what & FVM_MATRIX) M->val[pos[j]] += w * bc->a[bk];
+        if (what & FVM_MATRIX) M->val[pos[j - j0]] += w * bc->a[bk];
         if (what & FVM_RHS) M->rhs[row] -= w * bc->b[bk];
     }
 }
@@ -222,17 +223,34 @@ static inline void neumann_face(const Fvm *d, FvMatrix *M, int i, int k, double 
                 what);
 }
 
+/* The terms of a face whose rows are a stencil pair's (stencil.h) but
+   not FVM_TWO_POINT, because one of its cells is not a row of ours (a
+   halo cell): cells only, so matrix entries only, F = D (u_N - u_C). */
+static void pair_face_terms(const Fvm *d, FvMatrix *M, int i, double D)
+{
+    const Stencil *s = &d->ip->face;
+    int o = d->f->m->owner[i], n = face_nbr(d->f, i), q = d->pos_off[i];
+    double sgn[2] = {-D, D}; /* PLUS (the neighbour), MINUS (the owner) in the owner's row */
+    for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++, q++) {
+        StencilRow sr;
+        stencil_row(s, interp_row(i, k), &sr);
+        double c = sgn[k - INTERP_PLUS] * sr.w[0];
+        if (o < M->nrows) M->val[d->pos_own[q]] += c;
+        if (n >= 0 && n < M->nrows) M->val[d->pos_nbr[q]] -= c;
+    }
+}
+
 /* Face i's terms (not an empty face). */
 static inline void face_terms(const Fvm *d, FvMatrix *M, int i, int k, double gamma, int what)
 {
     const FvMesh *f = d->f;
     int o = f->m->owner[i], n = face_nbr(f, i);
-    if (i >= f->ninternal && d->bc->fixed_grad[bc_slot(d->bc, i - f->ninternal)]) {
+    if (d->kind[i] == FVM_NEUMANN) {
         if (o < M->nrows) neumann_face(d, M, i, k, gamma, what);
         return;
     }
     double D = gamma * f->mag_sf[i] / d->dist[i];
-    if (d->two_point[i]) { /* the general case below with weights 1 */
+    if (d->kind[i] == FVM_TWO_POINT) { /* the general case below with weights 1 */
         if (what & FVM_MATRIX) {
             M->val[M->face_pos[2 * i]] += -D;
             M->val[M->diag[o]] += D;
@@ -242,6 +260,10 @@ static inline void face_terms(const Fvm *d, FvMatrix *M, int i, int k, double ga
         return;
     }
     int rp = interp_row(i, INTERP_PLUS), rm = interp_row(i, INTERP_MINUS), np = plus_len(d, i);
+    if (stencil_is_pair(&d->ip->face, rp)) {
+        if (what & FVM_MATRIX) pair_face_terms(d, M, i, D);
+        return;
+    }
     const int *po = d->pos_own + d->pos_off[i], *pn = d->pos_nbr + d->pos_off[i];
     if (o < M->nrows) { /* -F in the owner's row */
         add_row(M, d, po, o, rp, k, -D, what);

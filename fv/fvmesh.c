@@ -134,6 +134,8 @@ static void boundary_info(FvMesh *f)
             f->empty_face[i] = (char)mesh_patch_is_empty(pa);
         }
     }
+    f->nslots = 0;
+    for (int b = 0; b < f->nboundary; b++) f->bslot[b] = f->empty_face[f->ninternal + b] ? -1 : f->nslots++;
 }
 
 static void cartesian_info(FvMesh *f)
@@ -174,6 +176,7 @@ int fvmesh_init(FvMesh *f, Mesh *m, Err *e)
     f->h = mem_alloc(nf * sizeof(double));
     f->ht = mem_alloc(nf * sizeof(double));
     f->face_patch = mem_alloc(((size_t)f->nboundary + 1) * sizeof(int));
+    f->bslot = mem_alloc(((size_t)f->nboundary + 1) * sizeof(int));
     f->empty_face = mem_calloc(nf, 1);
     f->cartesian_face = mem_calloc(nf, 1);
     f->cyc_face = mem_alloc(((size_t)f->nboundary + 1) * sizeof(int));
@@ -194,6 +197,7 @@ void fvmesh_free(FvMesh *f)
     free(f->h);
     free(f->ht);
     free(f->face_patch);
+    free(f->bslot);
     free(f->empty_face);
     free(f->cartesian_face);
     free(f->cyc_face);

@@ -46,6 +46,11 @@ typedef struct FvMesh {
                              the Mesh's cell_seed or cell_centre itself */
     double *h, *ht;       /* nfaces: h_f and ht_f of eq. 4.62-4.63 */
     int *face_patch;      /* nboundary: patch of boundary face ninternal + i */
+    int nslots;           /* boundary faces that are not empty */
+    int *bslot;           /* nboundary: boundary face b's index among those
+                             (in face order), -1 for an empty face: where
+                             per-face boundary data without the empty
+                             faces keep it (fv/bc.h) */
     char *empty_face;     /* nfaces: 1 on faces of empty patches (no flux) */
     char *cartesian_face; /* nfaces: 1 between two whole Cartesian cells
                              (eq. 4.61: the face value is the mean),
