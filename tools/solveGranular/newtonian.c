@@ -191,6 +191,8 @@ void gran_free(Granular *g)
     if (g->hy.f) hydro_free(&g->hy);
     void *arr[] = {g->wall, g->phi, g->rho1, g->mom, g->force, g->x, g->xb, g->xbr, g->patch_out};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
+    free(g->src_rho);
+    free(g->src_m);
     memset(g, 0, sizeof *g);
 }
 
@@ -368,6 +370,34 @@ static int solve_component(Granular *g, int j, double dt, Err *e)
     return 0;
 }
 
+/* The hook's cell integrals at the step's start time (newtonian.h,
+   "Sources"); the arrays are made at the first call, so a run without a
+   hook carries none. */
+static int source_eval(Granular *g, Err *e)
+{
+    size_t nc = (size_t)g->f->ncells + 1;
+    if (!g->src_rho) {
+        g->src_rho = mem_calloc(nc, sizeof(double));
+        g->src_m = mem_calloc(3 * nc, sizeof(double));
+    }
+    return g->src.fn(g->src.ctx, g->f, g->time, g->src_rho, g->src_m, e);
+}
+
+/* Adds the source integrals explicitly: dt/V S_rho to the new density,
+   and S_m to the momentum right-hand side through the explicit force,
+   which solve_component subtracts. */
+static void source_add(Granular *g, double dt)
+{
+    const FvMesh *f = g->f;
+    double sum = 0;
+    for (int c = 0; c < f->ncells; c++) {
+        g->rho1[c] += dt / f->m->cell_vol[c] * g->src_rho[c];
+        for (int k = 0; k < 3; k++) g->force[3 * c + k] -= g->src_m[3 * c + k];
+    }
+    for (int c = 0; c < f->nowned; c++) sum += g->src_rho[c];
+    g->src_total += dt * sum;
+}
+
 /* The first cell whose new state is not finite or whose density is not
    positive, or -1. */
 static int bad_cell(const Granular *g)
@@ -382,12 +412,15 @@ static int bad_cell(const Granular *g)
 int gran_step(Granular *g, double dt, Err *e)
 {
     const FvMesh *f = g->f;
-    double out0 = g->out_total, t0 = now();
+    double out0 = g->out_total, src0 = g->src_total, t0 = now();
+    if (g->src.fn && source_eval(g, e)) return -1;
     explicit_terms(g, dt);
+    if (g->src.fn) source_add(g, dt);
     g->t_explicit += now() - t0;
     for (int j = 0; j < g->naxes; j++)
         if (solve_component(g, j, dt, e)) {
             g->out_total = out0;
+            g->src_total = src0;
             return -1;
         }
     t0 = now();
@@ -396,6 +429,7 @@ int gran_step(Granular *g, double dt, Err *e)
     int c = bad_cell(g);
     if (c >= 0) {
         g->out_total = out0;
+        g->src_total = src0;
         const double *x = f->node + 3 * c, *u = g->mom + 3 * c;
         return err_set(e, NULL, 0,
                        "cell %d at (%g %g %g): %s: density %g, velocity (%g %g %g) (time step %g too large for "
@@ -405,6 +439,7 @@ int gran_step(Granular *g, double dt, Err *e)
     }
     memcpy(g->rho->v, g->rho1, sizeof(double) * (size_t)f->ncells);
     memcpy(g->U->v, g->mom, sizeof(double) * 3 * (size_t)f->ncells);
+    g->time += dt;
     g->t_update += now() - t0;
     return 0;
 }

@@ -40,6 +40,22 @@
 ** u, momentum is conserved).  A step that fails (a linear solve, a NaN, a
 ** density <= 0) leaves the state as it was, so the caller can write the
 ** last good one.
+**
+** Sources: a caller may add given source terms to the two equations,
+**     d_t rho + ... = s_rho,     d_t(rho u) + ... = s_m,
+** through the hook Granular.src (GranSource below; manufactured solutions,
+** tests/validation/mms; later fvOptions).  Each step asks it for the
+** integrals of s_rho and s_m over every cell at the step's start time
+** t^m, and adds them explicitly, as the other explicit terms:
+**   rho^{m+1} += dt/V S_rho,   the momentum right-hand side += S_m.
+** Integrals, not point values, so that the hook chooses the quadrature:
+** the centroid rule is second order on any cell (it integrates linear
+** functions exactly), fv/quad.h's degree-2 rule third order (doc/theory.md).
+** Without a hook (src.fn NULL, as gran_init leaves it) nothing changes.
+** solveGranular's main frees the set-up's geometry before the steps
+** (fvmesh_end_setup: face centres, cell face lists), which fv/quad.h
+** reads: a hook that integrates with it runs where that is kept (the
+** studies of tests/validation/mms), or takes its integrals before.
 */
 #ifndef KIESEL_NEWTONIAN_H
 #define KIESEL_NEWTONIAN_H
@@ -61,6 +77,16 @@ typedef struct GranSchemes {
     TvdScheme div[2];      /* divSchemes' div(phi,rho) and div(phi,U) */
     int gravity;           /* gravitySchemes: GRAN_WELL_BALANCED, ... */
 } GranSchemes;
+
+/* A source hook: fn fills, for each of the f->ncells cells c, rho_src[c]
+   = the integral of s_rho over cell c and mom_src[3 c + k] = that of
+   component k of s_m, at time t (units: kg/s and N).  It returns 0, or -1
+   with e filled (the step then fails and changes nothing).  ctx is the
+   caller's. */
+typedef struct GranSource {
+    int (*fn)(void *ctx, const FvMesh *f, double t, double *rho_src, double *mom_src, Err *e);
+    void *ctx;
+} GranSource;
 
 typedef struct Granular {
     const FvMesh *f;
@@ -98,6 +124,14 @@ typedef struct Granular {
     double out_total;      /* sum over the steps of dt x the net mass flow
                               out: mass(start) - mass = out_total to
                               round-off (the internal fluxes cancel) */
+    GranSource src;        /* the source hook, or fn NULL (none) */
+    double time;           /* the state's time t^m, the hook's argument:
+                              0 after gran_init, set by the caller at the
+                              start, advanced by each gran_step */
+    double *src_rho, *src_m;   /* ncells, 3 ncells: the hook's integrals */
+    double src_total;      /* sum over the steps of dt x the integrated
+                              continuity source: mass - mass(start) =
+                              src_total - out_total to round-off */
     double t_flux, t_explicit, t_assembly, t_solve, t_update;   /* seconds
                               spent in each part of the steps (GranProfile) */
 } Granular;
