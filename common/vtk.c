@@ -37,6 +37,11 @@
 ** least reliable, weigh least; points that no cell of the file touches, or
 ** whose cells all have zero size, get 0.
 **
+** Writing.  A file goes to its temporary file a megabyte at a time (Out,
+** an IoStream of io.h) and is renamed into place at the end, so the
+** solvers' VTK output at their write times does not hold a copy of the
+** file (about 100 bytes a cell of a 3-D grid) beside their state.
+**
 ** Encoding.  Binary legacy files are big-endian: every int32 and float64 is
 ** assembled byte by byte from its most significant end, so the code is the
 ** same on any host.  Ascii numbers are the shortest decimal that reads back
