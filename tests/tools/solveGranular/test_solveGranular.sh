@@ -22,8 +22,10 @@
 #     the mode's amplitude);
 #   - bad input: a misspelt model keyword, an unknown boundary type, a
 #     field without an entry for a patch of the grid, fvSolution with an
-#     unknown solver, an unknown gravitySchemes entry: each a file:line
-#     message, exit 1, no time step run and no time directory written;
+#     unknown solver, an unknown gravitySchemes entry, multilinear
+#     interpolation on the Voronoi grid (refused, fv/interp_ml.c): each a
+#     file:line message, exit 1, no time step run and no time directory
+#     written;
 #   - restart: 120 steps in one run against 60 steps (stopAt nextWrite,
 #     binary) and a restart from there (startFrom latestTime): the last
 #     time directories are identical (cmp of rho, U, p, uniform/time);
@@ -196,10 +198,12 @@ else
 fi
 
 # ---- bad input ----
-# bad NAME FILE SED PATTERN: edits a copy of the channel case and expects
-# PATTERN on stderr, exit 1, no step and no new time directory
+# bad NAME FILE SED PATTERN [CASE]: edits a copy of the channel case (or
+# CASE) and expects PATTERN on stderr, exit 1, no step and no new time
+# directory
 bad() {
-    rm -rf bad_$1 && mkdir bad_$1 && cp -r chan0/system chan0/constant chan0/0 bad_$1/
+    local src=${5:-chan0}
+    rm -rf bad_$1 && mkdir bad_$1 && cp -r $src/system $src/constant $src/0 bad_$1/
     sed -i "$3" bad_$1/$2
     before=$(listing bad_$1)
     "$BIN/solveGranular" -case bad_$1 >bad_$1.out 2>bad_$1.err; local rc=$?
@@ -218,6 +222,8 @@ bad solver system/fvSolution 's/PBiCGStab/PBiCGStabb/' 'fvSolution:[0-9]+: .*PBi
 bad div_scheme system/fvSchemes 's/Gauss upwind/Gauss linear/' 'fvSchemes:[0-9]+: .*Gauss upwind'
 bad gravity_scheme system/fvSchemes 's/interpolationSchemes/gravitySchemes { default wellBalancd; } interpolationSchemes/' \
     'fvSchemes:[0-9]+: .*wellBalancd'
+bad multilinear_voronoi system/fvSchemes 's/default shepard/default multilinear/' \
+    'fvSchemes:[0-9]+: interpolation scheme multilinear is not available on Voronoi grids .*choose shepard' rest_voronoi
 
 # ---- restart: bit-identical continuation from binary output ----
 c=rs

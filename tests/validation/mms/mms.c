@@ -12,7 +12,8 @@
 **           ball-cut       the ball |x - c| < 0.4 (3-D) cut from [0,1]^3
 **                          (N^3 cells) and merged
 **           ball-voronoi   the ball as a Voronoi grid
-**   INTERP  shepard | multilinear        (interpolationSchemes)
+**   INTERP  shepard | multilinear        (interpolationSchemes; multilinear
+**                                        is refused on the Voronoi grids)
 **   DIV     upwind | limitedLinear | vanLeer   (divSchemes: Gauss upwind,
 **           Gauss limitedLinear 1, Gauss vanLeer, for rho and U)
 **   N...    the grid levels, coarse to fine
