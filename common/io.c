@@ -334,6 +334,76 @@ int io_write_atomic(const char *path, const void *data, size_t n, int gzip, Err 
     return io_write_atomic_v(path, &one, 1, gzip, e);
 }
 
+/* The temporary file beside the target (path, or path.gz with gzip) and
+   the names a commit needs. */
+static int stream_begin(IoStream *s, const char *path, int gzip, Err *e)
+{
+    size_t l = strlen(path);
+    memset(s, 0, sizeof *s);
+    s->target = mem_alloc(l + 4);
+    memcpy(s->target, path, l + 1);
+    if (gzip) memcpy(s->target + l, ".gz", 4);
+    s->other = mem_alloc(l + 4);
+    memcpy(s->other, path, l + 1);
+    if (!gzip) memcpy(s->other + l, ".gz", 4);
+    char *dir = dir_of(s->target);
+    const char *base = strrchr(s->target, '/') ? strrchr(s->target, '/') + 1 : s->target;
+    size_t tl = strlen(dir) + strlen(base) + 32;
+    s->tmp = mem_alloc(tl);
+    snprintf(s->tmp, tl, "%s/.%s.tmpXXXXXX", dir, base);
+    free(dir);
+    s->fd = mkstemp(s->tmp);
+    if (s->fd >= 0) return 0;
+    err_set(e, s->target, 0, "cannot write file: %s", strerror(errno));
+    s->fd = -1;
+    io_stream_abort(s);
+    return -1;
+}
+
+int io_stream_open(IoStream *s, const char *path, Err *e) { return stream_begin(s, path, 0, e); }
+
+void io_stream_put(IoStream *s, const void *p, size_t n)
+{
+    if (!s->failed && write_all(s->fd, p, n)) s->failed = errno ? errno : EIO;
+}
+
+void io_stream_abort(IoStream *s)
+{
+    if (s->fd >= 0) {
+        close(s->fd);
+        unlink(s->tmp);
+    }
+    free(s->tmp);
+    free(s->target);
+    free(s->other);
+    memset(s, 0, sizeof *s);
+    s->fd = -1;
+}
+
+int io_stream_close(IoStream *s, Err *e)
+{
+    int rc = -1;
+    if (s->failed || fsync(s->fd)) {
+        err_set(e, s->target, 0, "write failed: %s (old file kept)", strerror(s->failed ? s->failed : errno));
+    } else {
+        fchmod(s->fd, 0644);
+        int fd = s->fd;
+        s->fd = -1;
+        if (close(fd)) {
+            err_set(e, s->target, 0, "write failed: %s (old file kept)", strerror(errno));
+            unlink(s->tmp);
+        } else if (rename(s->tmp, s->target)) {
+            err_set(e, s->target, 0, "cannot rename temporary file: %s", strerror(errno));
+            unlink(s->tmp);
+        } else {
+            unlink(s->other);
+            rc = 0;
+        }
+    }
+    io_stream_abort(s);
+    return rc;
+}
+
 int io_write_atomic_v(const char *path, const IoPiece *pieces, int npieces, int gzip, Err *e)
 {
     if (strcmp(path, "-") == 0) {
@@ -342,57 +412,16 @@ int io_write_atomic_v(const char *path, const IoPiece *pieces, int npieces, int 
             return err_set(e, "<stdout>", 0, "write error: %s", strerror(errno));
         return 0;
     }
-    size_t l = strlen(path);
-    char *target = mem_alloc(l + 4);
-    memcpy(target, path, l + 1);
-    if (gzip) memcpy(target + l, ".gz", 4);
-    char *other = mem_alloc(l + 4);
-    memcpy(other, path, l + 1);
-    if (!gzip) memcpy(other + l, ".gz", 4);
-
-    char *dir = dir_of(target);
-    const char *base = strrchr(target, '/') ? strrchr(target, '/') + 1 : target;
-    size_t tl = strlen(dir) + strlen(base) + 32;
-    char *tmp = mem_alloc(tl);
-    snprintf(tmp, tl, "%s/.%s.tmpXXXXXX", dir, base);
-    int rc = -1;
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        err_set(e, target, 0, "cannot write file: %s", strerror(errno));
-        goto done;
-    }
-    int wr = gzip ? gzip_to_fd(fd, pieces, npieces) : write_pieces(fd, pieces, npieces);
+    IoStream s;
+    if (stream_begin(&s, path, gzip, e)) return -1;
+    int wr = gzip ? gzip_to_fd(s.fd, pieces, npieces) : write_pieces(s.fd, pieces, npieces);
     if (wr == -2) {
         err_set(e, path, 0, "gzip compression failed");
-        close(fd);
-        unlink(tmp);
-        goto done;
+        io_stream_abort(&s);
+        return -1;
     }
-    if (wr || fsync(fd)) {
-        err_set(e, target, 0, "write failed: %s (old file kept)", strerror(errno));
-        close(fd);
-        unlink(tmp);
-        goto done;
-    }
-    fchmod(fd, 0644);
-    if (close(fd)) {
-        err_set(e, target, 0, "write failed: %s (old file kept)", strerror(errno));
-        unlink(tmp);
-        goto done;
-    }
-    if (rename(tmp, target)) {
-        err_set(e, target, 0, "cannot rename temporary file: %s", strerror(errno));
-        unlink(tmp);
-        goto done;
-    }
-    unlink(other);
-    rc = 0;
-done:
-    free(tmp);
-    free(dir);
-    free(target);
-    free(other);
-    return rc;
+    if (wr) s.failed = errno ? errno : EIO;
+    return io_stream_close(&s, e);
 }
 
 int io_mkdir_p(const char *path, Err *e)

@@ -10,7 +10,8 @@
 ** gzip set the file is written as path.gz and a stale uncompressed path is
 ** removed (and vice versa), so a time directory never holds both.
 ** io_write_atomic_v does the same for a file given as several pieces
-** (header, big array, footer) without joining them first.
+** (header, big array, footer) without joining them first, and an IoStream
+** for a file written in parts as it is made.
 */
 #ifndef KIESEL_IO_H
 #define KIESEL_IO_H
@@ -68,6 +69,24 @@ typedef struct IoPiece {
    first.  Same contract, same bytes on disk as io_write_atomic of the
    concatenation. */
 int io_write_atomic_v(const char *path, const IoPiece *pieces, int npieces, int gzip, Err *e);
+
+/* A file written atomically in parts, for output too big to assemble in
+   memory first (a VTK file of a big grid): io_stream_open makes the
+   temporary file beside path, io_stream_put appends bytes to it (a failed
+   write is kept and reported by the close), io_stream_close flushes it to
+   disk and renames it over path, with io_write_atomic's guarantees and
+   messages, and io_stream_abort removes it.  Uncompressed; not "-".  The
+   close and the abort free s. */
+typedef struct IoStream {
+    char *target, *other, *tmp;  /* the file, its other (.gz) name, the temporary */
+    int fd;
+    int failed;                  /* errno of the first failed write, or 0 */
+} IoStream;
+
+int io_stream_open(IoStream *s, const char *path, Err *e);
+void io_stream_put(IoStream *s, const void *p, size_t n);
+int io_stream_close(IoStream *s, Err *e);
+void io_stream_abort(IoStream *s);
 
 /* Creates a directory and its parents (like mkdir -p). */
 int io_mkdir_p(const char *path, Err *e);

@@ -37,6 +37,11 @@
 ** least reliable, weigh least; points that no cell of the file touches, or
 ** whose cells all have zero size, get 0.
 **
+** Writing.  A file goes to its temporary file a megabyte at a time (Out,
+** an IoStream of io.h) and is renamed into place at the end, so the
+** solvers' VTK output at their write times does not hold a copy of the
+** file (about 100 bytes a cell of a 3-D grid) beside their state.
+**
 ** Encoding.  Binary legacy files are big-endian: every int32 and float64 is
 ** assembled byte by byte from its most significant end, so the code is the
 ** same on any host.  Ascii numbers are the shortest decimal that reads back
@@ -132,23 +137,46 @@ static void put_be64(Buf *b, double x)
     buf_put(b, c, 8);
 }
 
-/* n tuples of width doubles: ascii one tuple per line, binary raw. */
-static void put_doubles(Buf *b, const double *v, size_t n, int width, int binary)
+/* ---- the file, a megabyte at a time ---- */
+
+/* The file being written: its bytes gather in b and go to the stream s a
+   megabyte at a time (out_check), so a big grid's file is never whole in
+   memory (at 64^3 it would be about 100 bytes a cell). */
+typedef struct Out {
+    Buf b;
+    IoStream *s;
+} Out;
+
+enum { OUT_CHUNK = 1 << 20 };
+
+static void out_check(Out *o)
 {
-    buf_reserve(b, n * (size_t)width * (binary ? 8 : 12));
-    for (size_t i = 0; i < n; i++) {
-        for (int k = 0; k < width; k++) {
-            double x = v[i * (size_t)width + (size_t)k];
-            if (binary) {
-                put_be64(b, x);
-            } else {
-                if (k) buf_putc(b, ' ');
-                foam_put_double(b, x, 0);
-            }
+    if (o->b.n < OUT_CHUNK) return;
+    io_stream_put(o->s, o->b.p, o->b.n);
+    buf_clear(&o->b);
+}
+
+/* One tuple of width doubles: ascii on one line, binary raw. */
+static void put_tuple(Out *o, const double *x, int width, int binary)
+{
+    Buf *b = &o->b;
+    for (int k = 0; k < width; k++) {
+        if (binary) {
+            put_be64(b, x[k]);
+        } else {
+            if (k) buf_putc(b, ' ');
+            foam_put_double(b, x[k], 0);
         }
-        if (!binary) buf_putc(b, '\n');
     }
-    if (binary) buf_putc(b, '\n');
+    if (!binary) buf_putc(b, '\n');
+    out_check(o);
+}
+
+/* n tuples of width doubles: ascii one tuple per line, binary raw. */
+static void put_doubles(Out *o, const double *v, size_t n, int width, int binary)
+{
+    for (size_t i = 0; i < n; i++) put_tuple(o, v + i * (size_t)width, width, binary);
+    if (binary) buf_putc(&o->b, '\n');
 }
 
 /* Array names: VTK's reader splits at blanks and decodes %XX. */
@@ -275,10 +303,12 @@ static int too_big(long n, const char *path, Err *e)
     return 1;
 }
 
-/* All mesh points; hexahedra and outward-oriented polyhedra. */
+/* All mesh points; hexahedra and outward-oriented polyhedra.  The cells
+   are classified first, so that the connectivity is allocated to its
+   length (a hexahedron's 8 entries, not the 31 of its face stream). */
 static int grid_3d(const Mesh *m, Grid *g, const char *path, Err *e)
 {
-    int *off, *idx, own;
+    int *off, *idx, own, v[8];
     cell_faces(m, &off, &idx, &own);
     g->np = m->npoints;
     g->nc = m->ncells;
@@ -288,7 +318,8 @@ static int grid_3d(const Mesh *m, Grid *g, const char *path, Err *e)
     for (int c = 0; c < m->ncells; c++) {
         long len = 1;
         for (int k = off[c]; k < off[c + 1]; k++) len += 1 + face_size(m, idx[k]);
-        total += len > 8 ? len : 8;
+        g->type[c] = hex_points(m, c, idx + off[c], off[c + 1] - off[c], v) ? VTK_HEXAHEDRON : VTK_POLYHEDRON;
+        total += g->type[c] == VTK_HEXAHEDRON ? 8 : len;
     }
     int rc = 0;
     if (too_big(total + m->ncells, path, e)) {
@@ -300,11 +331,10 @@ static int grid_3d(const Mesh *m, Grid *g, const char *path, Err *e)
         for (int c = 0; c < m->ncells; c++) {
             const int *cf = idx + off[c];
             int nf = off[c + 1] - off[c];
-            if (hex_points(m, c, cf, nf, g->conn + n)) {
-                g->type[c] = VTK_HEXAHEDRON;
+            if (g->type[c] == VTK_HEXAHEDRON) {
+                hex_points(m, c, cf, nf, g->conn + n);
                 n += 8;
             } else {
-                g->type[c] = VTK_POLYHEDRON;
                 g->conn[n++] = nf;
                 for (int k = 0; k < nf; k++) {
                     g->conn[n++] = face_size(m, cf[k]);
@@ -412,25 +442,19 @@ static int grid_2d(const Mesh *m, int axis, Grid *g, const char *path, const cha
 
 /* ---- writing ---- */
 
-static void put_points(Buf *b, const Mesh *m, const Grid *g, int binary)
+static void put_points(Out *o, const Mesh *m, const Grid *g, int binary)
 {
-    buf_printf(b, "POINTS %d double\n", g->np);
-    if (!g->pts) {
-        put_doubles(b, m->points, (size_t)g->np, 3, binary);
-        return;
-    }
-    size_t nx = 3 * (size_t)g->np;
-    double *x = MEM_NEW(double, nx);
-    for (int i = 0; i < g->np; i++) memcpy(x + 3 * (size_t)i, m->points + 3 * (size_t)g->pts[i], 3 * sizeof(double));
-    put_doubles(b, x, (size_t)g->np, 3, binary);
-    free(x);
+    buf_printf(&o->b, "POINTS %d double\n", g->np);
+    for (int i = 0; i < g->np; i++) put_tuple(o, m->points + 3 * (size_t)(g->pts ? g->pts[i] : i), 3, binary);
+    if (binary) buf_putc(&o->b, '\n');
 }
 
 /* CELLS/POLYGONS: per cell its entry count, then the entries. */
-static void put_cells(Buf *b, const Grid *g, const char *keyword, int binary)
+static void put_cells(Out *o, const Grid *g, const char *keyword, int binary)
 {
+    Buf *b = &o->b;
     buf_printf(b, "%s %d %d\n", keyword, g->nc, g->nc + g->off[g->nc]);
-    for (int c = 0; c < g->nc; c++) {
+    for (int c = 0; c < g->nc; c++, out_check(o)) {
         int n = g->off[c + 1] - g->off[c];
         const int *x = g->conn + g->off[c];
         if (binary) {
@@ -448,10 +472,11 @@ static void put_cells(Buf *b, const Grid *g, const char *keyword, int binary)
     if (binary) buf_putc(b, '\n');
 }
 
-static void put_types(Buf *b, const Grid *g, int binary)
+static void put_types(Out *o, const Grid *g, int binary)
 {
+    Buf *b = &o->b;
     buf_printf(b, "CELL_TYPES %d\n", g->nc);
-    for (int c = 0; c < g->nc; c++) {
+    for (int c = 0; c < g->nc; c++, out_check(o)) {
         if (binary) {
             put_be32(b, g->type[c]);
         } else {
@@ -462,13 +487,13 @@ static void put_types(Buf *b, const Grid *g, int binary)
     if (binary) buf_putc(b, '\n');
 }
 
-static void put_arrays(Buf *b, const Arr *a, int na, int ntuples, int binary)
+static void put_arrays(Out *o, const Arr *a, int na, int ntuples, int binary)
 {
-    buf_printf(b, "FIELD FieldData %d\n", na);
+    buf_printf(&o->b, "FIELD FieldData %d\n", na);
     for (int i = 0; i < na; i++) {
-        put_name(b, a[i].name);
-        buf_printf(b, " %d %d double\n", a[i].width, ntuples);
-        put_doubles(b, a[i].v, (size_t)ntuples, a[i].width, binary);
+        put_name(&o->b, a[i].name);
+        buf_printf(&o->b, " %d %d double\n", a[i].width, ntuples);
+        put_doubles(o, a[i].v, (size_t)ntuples, a[i].width, binary);
     }
 }
 
@@ -521,37 +546,38 @@ static double *point_average(const Grid *g, const Arr *a)
     return acc;
 }
 
-static void put_point_data(Buf *b, const Grid *g, const Arr *a, int na, int binary)
+static void put_point_data(Out *o, const Grid *g, const Arr *a, int na, int binary)
 {
-    buf_printf(b, "POINT_DATA %d\n", g->np);
+    buf_printf(&o->b, "POINT_DATA %d\n", g->np);
     Arr *pa = MEM_NEW(Arr, na);
     for (int i = 0; i < na; i++) {
         pa[i] = a[i];
         pa[i].v = point_average(g, &a[i]);
     }
-    put_arrays(b, pa, na, g->np, binary);
+    put_arrays(o, pa, na, g->np, binary);
     for (int i = 0; i < na; i++) free((double *)pa[i].v);
     free(pa);
 }
 
-/* The whole file into b. */
-static void put_dataset(Buf *b, const Mesh *m, const Grid *g, int polydata, const Arr *a, int na,
+/* The whole file into out. */
+static void put_dataset(Out *out, const Mesh *m, const Grid *g, int polydata, const Arr *a, int na,
                         const VtkOpts *o)
 {
     int bin = o->binary;
+    Buf *b = &out->b;
     buf_puts(b, "# vtk DataFile Version 2.0\n");
     put_title(b, o->title);
     buf_puts(b, bin ? "BINARY\n" : "ASCII\n");
     buf_puts(b, polydata ? "DATASET POLYDATA\n" : "DATASET UNSTRUCTURED_GRID\n");
     buf_puts(b, "FIELD FieldData 1\nTimeValue 1 1 double\n");
-    put_doubles(b, &o->time, 1, 1, bin);
-    put_points(b, m, g, bin);
-    put_cells(b, g, polydata ? "POLYGONS" : "CELLS", bin);
-    if (!polydata) put_types(b, g, bin);
+    put_doubles(out, &o->time, 1, 1, bin);
+    put_points(out, m, g, bin);
+    put_cells(out, g, polydata ? "POLYGONS" : "CELLS", bin);
+    if (!polydata) put_types(out, g, bin);
     if (na == 0) return;
     buf_printf(b, "CELL_DATA %d\n", g->nc);
-    put_arrays(b, a, na, g->nc, bin);
-    if (o->point_data) put_point_data(b, g, a, na, bin);
+    put_arrays(out, a, na, g->nc, bin);
+    if (o->point_data) put_point_data(out, g, a, na, bin);
 }
 
 static int check_fields(const char *path, const Field *f, int n, int count, Err *e)
@@ -567,15 +593,18 @@ static int check_fields(const char *path, const Field *f, int n, int count, Err 
     return 0;
 }
 
+/* The file at path, atomically, made as it is written (Out). */
 static int write_grid(const char *path, const Mesh *m, const Grid *g, int polydata, const Arr *a,
                       int na, const VtkOpts *o, Err *e)
 {
-    Buf b;
-    buf_init(&b);
-    put_dataset(&b, m, g, polydata, a, na, o);
-    int rc = io_write_atomic(path, b.p, b.n, 0, e);
-    buf_free(&b);
-    return rc;
+    IoStream s;
+    if (io_stream_open(&s, path, e)) return -1;
+    Out out = {{NULL, 0, 0}, &s};
+    buf_init(&out.b);
+    put_dataset(&out, m, g, polydata, a, na, o);
+    io_stream_put(&s, out.b.p, out.b.n);
+    buf_free(&out.b);
+    return io_stream_close(&s, e);
 }
 
 static const VtkOpts *opts_or_default(const VtkOpts *o, VtkOpts *def)

@@ -15,7 +15,8 @@
 ** FieldData.  Binary legacy files are big-endian, as VTK requires.
 ** Boundary patches go to separate POLYDATA files (POLYGONS, values from
 ** field_patch_values).  A .vtk.series file (JSON, ParaView's format) lists
-** the files with their time values.  Every file is written atomically.
+** the files with their time values.  Every file is written atomically,
+** as it is made (an IoStream, io.h: never whole in memory).
 ** Geometry: point data needs m->cell_vol (internal) or m->face_area
 ** (patches), from mesh_geometry; cell->face addressing is used when present
 ** and built internally otherwise.

@@ -231,27 +231,27 @@ static void wall_normal(const FvMesh *fm, int b, double *n)
 static void fill_static(Bc *bc, const BcPatch *bp, int i)
 {
     const FvMesh *fm = bc->fm;
-    int f = bp->start + i, b = f - fm->ninternal, w = bc->width;
-    double h = fm->h[f];
-    wall_normal(fm, b, bc->n + 3 * b);
-    bc->nbr[b] = -1;
+    int f = bp->start + i, b = f - fm->ninternal, s = bp->slot + i, w = bc->width;
+    double h = bc->h[s] = fm->h[f];
+    wall_normal(fm, b, bc->n + 3 * s);
+    bc->nbr[s] = -1;
     for (int k = 0; k < w; k++) {
-        int j = b * w + k;
+        int j = s * w + k;
         if (bp->value) {
             bc->a[j] = 0; /* eq. 4.61: xi_F, a Dirichlet value */
             bc->b[j] = bp->value[i * w + k];
         } else if (scalar_or_neumann(bc, bp->kind)) {
             bc->a[j] = 1;
             bc->b[j] = 0;
-            bc->fixed_grad[b] = 1;
+            bc->fixed_grad[s] = 1;
         } else if (bp->kind == BC_SLIP || bp->kind == BC_SYMMETRY_PLANE) {
-            double nk = bc->n[3 * b + k];
+            double nk = bc->n[3 * s + k];
             bc->a[j] = 1 - nk * nk; /* the diagonal of I - n n^T */
             bc->b[j] = 0;
         }
         /* eq. 4.63 with ht_f = 0: (xi_b - xi_in)/h_f */
-        bc->ga[j] = bc->fixed_grad[b] ? 0 : (bc->a[j] - 1) / h;
-        bc->gb[j] = bc->fixed_grad[b] ? 0 : bc->b[j] / h;
+        bc->ga[j] = bc->fixed_grad[s] ? 0 : (bc->a[j] - 1) / h;
+        bc->gb[j] = bc->fixed_grad[s] ? 0 : bc->b[j] / h;
     }
 }
 
@@ -260,18 +260,19 @@ static void fill_cyclic(Bc *bc, const BcPatch *bp, int i)
 {
     const FvMesh *fm = bc->fm;
     const Mesh *m = fm->m;
-    int f = bp->start + i, b = f - fm->ninternal, g = m->patches[bp->partner].start + i;
+    int f = bp->start + i, b = f - fm->ninternal, s = bp->slot + i, g = m->patches[bp->partner].start + i;
     int nb = m->owner[g];
     const double *x = fm->node + 3 * nb, *cg = m->face_centre + 3 * g;
     const double *xc = fm->node + 3 * m->owner[f], *cf = m->face_centre + 3 * f;
     double r[3] = {x[0] - cg[0], x[1] - cg[1], x[2] - cg[2]}, rc[3] = {xc[0] - cf[0], xc[1] - cf[1], xc[2] - cf[2]};
     double dc = fabs(geom_dot(rc, fm->nf + 3 * f)), dn = fabs(geom_dot(r, fm->nf + 3 * g));
-    wall_normal(fm, b, bc->n + 3 * b);
-    bc->nbr[b] = nb;
-    bc->nbr_d[b] = dn;
-    bc->nbr_w[b] = dc / (dc + dn);
+    wall_normal(fm, b, bc->n + 3 * s);
+    bc->h[s] = fm->h[f];
+    bc->nbr[s] = nb;
+    bc->nbr_d[s] = dn;
+    bc->nbr_w[s] = dc / (dc + dn);
     for (int k = 0; k < bc->width; k++) {
-        int j = b * bc->width + k;
+        int j = s * bc->width + k;
         bc->a[j] = dn / (dc + dn);
         bc->ga[j] = -1 / (dc + dn);
     }
@@ -286,17 +287,17 @@ void bc_update(Bc *bc, const double *v)
         int slip = (bp->kind == BC_SLIP || bp->kind == BC_SYMMETRY_PLANE) && w == 3;
         if (!slip && bp->kind != BC_CYCLIC) continue;
         for (int i = 0; i < bp->size; i++) {
-            int f = bp->start + i, b = f - fm->ninternal;
+            int f = bp->start + i, s = bp->slot + i;
             for (int k = 0; k < w; k++) {
-                int j = b * w + k;
+                int j = s * w + k;
                 if (slip) {
-                    const double *u = v + 3 * fm->m->owner[f], *n = bc->n + 3 * b;
+                    const double *u = v + 3 * fm->m->owner[f], *n = bc->n + 3 * s;
                     /* basicSymmetry, one component at a time: -n_k sum_{l != k} n_l u_l */
                     bc->b[j] = -n[k] * (geom_dot(n, u) - n[k] * u[k]);
-                    bc->gb[j] = bc->b[j] / fm->h[f];
+                    bc->gb[j] = bc->b[j] / bc->h[s];
                 } else {
-                    double xn = v[bc->nbr[b] * w + k];
-                    bc->b[j] = bc->nbr_w[b] * xn;
+                    double xn = v[bc->nbr[s] * w + k];
+                    bc->b[j] = bc->nbr_w[s] * xn;
                     bc->gb[j] = -bc->ga[j] * xn; /* (xi_N - xi_C) / (dC + dN) */
                 }
             }
@@ -304,18 +305,27 @@ void bc_update(Bc *bc, const double *v)
     }
 }
 
-static void allocate(Bc *bc, int nb, int w)
+/* The coefficients of the faces of the patches that are not empty
+   (FvMesh.bslot: the empty patches are the grid's, pass 1 checked). */
+static void allocate(Bc *bc, int w)
 {
-    size_t n = (size_t)nb * (size_t)w;
+    const FvMesh *fm = bc->fm;
+    int ns = bc->nslots = fm->nslots;
+    for (int p = 0; p < bc->npatches; p++) {
+        BcPatch *bp = &bc->patch[p];
+        bp->slot = bp->kind == BC_EMPTY || bp->size == 0 ? -1 : fm->bslot[bp->start - fm->ninternal];
+    }
+    size_t n = (size_t)ns * (size_t)w;
     bc->a = MEM_NEW(double, n);
     bc->b = MEM_NEW(double, n);
     bc->ga = MEM_NEW(double, n);
     bc->gb = MEM_NEW(double, n);
-    bc->fixed_grad = MEM_NEW(char, nb);
-    bc->n = MEM_NEW(double, 3 * (size_t)nb);
-    bc->nbr = MEM_NEW(int, nb);
-    bc->nbr_w = MEM_NEW(double, nb);
-    bc->nbr_d = MEM_NEW(double, nb);
+    bc->fixed_grad = MEM_NEW(char, ns);
+    bc->n = MEM_NEW(double, 3 * (size_t)ns);
+    bc->h = MEM_NEW(double, ns);
+    bc->nbr = MEM_NEW(int, ns);
+    bc->nbr_w = MEM_NEW(double, ns);
+    bc->nbr_d = MEM_NEW(double, ns);
 }
 
 static int parse(Ctx *c, Err *e)
@@ -341,9 +351,9 @@ int bc_init(Bc *bc, const Field *f, const FvMesh *fm, Err *e)
         bc_free(bc);
         return -1;
     }
-    allocate(bc, fm->nboundary, f->width);
+    allocate(bc, f->width);
     for (int p = 0; p < bc->npatches; p++)
-        for (int i = 0; i < bc->patch[p].size; i++) {
+        for (int i = 0; i < bc->patch[p].size && bc->patch[p].slot >= 0; i++) {
             if (bc->patch[p].kind == BC_CYCLIC)
                 fill_cyclic(bc, &bc->patch[p], i);
             else
@@ -363,6 +373,7 @@ void bc_free(Bc *bc)
     free(bc->gb);
     free(bc->fixed_grad);
     free(bc->n);
+    free(bc->h);
     free(bc->nbr);
     free(bc->nbr_w);
     free(bc->nbr_d);
@@ -379,17 +390,18 @@ static void patch_values(const Bc *bc, const BcPatch *bp, const double *v, int k
 {
     const FvMesh *fm = bc->fm;
     const int *owner = fm->m->owner + fm->ninternal;
-    int w = bc->width, b0 = bp->start - fm->ninternal;
+    int w = bc->width, b0 = bp->start - fm->ninternal, s0 = bp->slot - b0;
+    if (bp->slot < 0) return; /* empty */
     if (bp->value) {
         for (int j = 0; j < bp->size; j++) xb[(size_t)(b0 + j) * stride] = bp->value[j * w + k];
     } else if (bp->kind == BC_CYCLIC) {
         for (int b = b0; b < b0 + bp->size; b++) {
-            double wn = bc->nbr_w[b];
-            xb[(size_t)b * stride] = (1 - wn) * v[(size_t)owner[b] * w + k] + wn * v[(size_t)bc->nbr[b] * w + k];
+            double wn = bc->nbr_w[s0 + b];
+            xb[(size_t)b * stride] = (1 - wn) * v[(size_t)owner[b] * w + k] + wn * v[(size_t)bc->nbr[s0 + b] * w + k];
         }
     } else if ((bp->kind == BC_SLIP || bp->kind == BC_SYMMETRY_PLANE) && w == 3) {
         for (int b = b0; b < b0 + bp->size; b++) {
-            const double *n = bc->n + 3 * b, *own = v + (size_t)owner[b] * 3;
+            const double *n = bc->n + 3 * (s0 + b), *own = v + (size_t)owner[b] * 3;
             xb[(size_t)b * stride] = own[k] - geom_dot(n, own) * n[k];
         }
     } else {
@@ -412,6 +424,11 @@ void bc_states(const Bc *bc, const double *v, double *xb)
 {
     bc_values(bc, v, xb);
     int w = bc->width;
-    for (int b = 0; b < bc->nboundary; b++)
-        if (bc->nbr[b] >= 0) memcpy(xb + (size_t)b * w, v + (size_t)bc->nbr[b] * w, (size_t)w * sizeof *xb);
+    for (int p = 0; p < bc->npatches; p++) {
+        const BcPatch *bp = &bc->patch[p];
+        if (bp->kind != BC_CYCLIC) continue;
+        for (int j = 0; j < bp->size; j++)
+            memcpy(xb + (size_t)(bp->start - bc->fm->ninternal + j) * w, v + (size_t)bc->nbr[bp->slot + j] * w,
+                   (size_t)w * sizeof *xb);
+    }
 }

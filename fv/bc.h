@@ -52,8 +52,9 @@
 **                   reads.  The solvers' face rows do not use them: a
 **                   cyclic face is an internal face of the periodic
 **                   domain there (fvmesh.h, interp.h).
-**   empty           the front and back of a 2-D grid: no flux
-**                   (xi_b = xi_in, gradient 0; the assembly skips them)
+**   empty           the front and back of a 2-D grid: no flux, no
+**                   coefficients (bc_slot -1), no values (the terms and
+**                   the assembly skip them)
 **   calculated      a value the solver derives (p = R_s T rho): taken as a
 **                   fixed value, the value entry required
 */
@@ -80,6 +81,7 @@ typedef enum BcKind {
 typedef struct BcPatch {
     BcKind kind;
     int start, size;   /* mesh faces start .. start+size-1 */
+    int slot;          /* the slot of its first face (bc_slot); -1 empty */
     int partner;       /* cyclic: the neighbourPatch's index, else -1 */
     double shift[3];   /* cyclic: partner face centre - own face centre */
     double *value;     /* size*width fixed values (fixedValue, movingWall,
@@ -90,17 +92,27 @@ typedef struct Bc {
     const FvMesh *fm;
     int width;         /* 1 scalar, 3 vector */
     int npatches, nboundary;
+    int nslots;        /* the boundary faces that are not empty */
     BcPatch *patch;    /* one per mesh patch, in mesh order */
-    /* per boundary face b (nboundary) and component k, at b*width + k: */
+    /* per slot s = bc_slot(bc, b) of boundary face b and component k, at
+       s*width + k: */
     double *a, *b;     /* face value xi_b = a xi_in + b */
     double *ga, *gb;   /* outward normal gradient = ga xi_in + gb */
-    /* per boundary face: */
+    /* per slot: */
     char *fixed_grad;  /* 1 where the normal gradient is given (Neumann) */
-    double *n;         /* 3 nboundary: the wall normal slip uses (outward) */
+    double *n;         /* 3 per slot: the wall normal slip uses (outward) */
+    double *h;         /* h_f of eq. 4.63 (slip's gradient b/h_f) */
     int *nbr;          /* cyclic: the partner face's owner cell, else -1 */
     double *nbr_w;     /* cyclic: weight of xi_N in the face value, else 0 */
     double *nbr_d;     /* cyclic: dN, the partner owner's normal distance */
 } Bc;
+
+/* Where boundary face b's coefficients are: its index among the faces of
+   the patches that are not empty (FvMesh.bslot), or -1 for a face of an
+   empty patch, which carries no coefficients (the front and back of a 2-D
+   grid are two faces a cell: 440 bytes a cell of coefficients no term
+   reads). */
+static inline int bc_slot(const Bc *bc, int b) { return bc->fm->bslot[b]; }
 
 /* The keyword of a kind ("fixedValue", ...). */
 const char *bc_kind_name(BcKind k);
@@ -121,7 +133,9 @@ void bc_update(Bc *bc, const double *v);
    xb[b*width + k], exactly (slip: the owner's value with its normal part
    removed; cyclic: the value between the two nodes).  After bc_update(bc,
    v) this is a xi_C + b, with xi_C the owner's value.  The boundary
-   sources of stencils (fv/stencil.h) read one component of it. */
+   sources of stencils (fv/stencil.h) read one component of it.  Faces of
+   empty patches are skipped: their entries of xb are left as they were
+   (no term reads them). */
 void bc_values(const Bc *bc, const double *v, double *xb);
 
 /* The state across every boundary face, as the upwind convection of eq.
@@ -144,7 +158,7 @@ int bc_kind_open(BcKind k);
 int bc_check_open(const Bc *rho, const Bc *U, const Field *frho, const Field *fU, double c, Err *e);
 
 /* Component k of the boundary values (stride 1, nboundary numbers), the
-   form stencil_apply takes. */
+   form stencil_apply takes (empty faces skipped, as bc_values). */
 void bc_values_component(const Bc *bc, const double *v, int k, double *xb);
 
 #endif

@@ -9,7 +9,7 @@
 ** itself.  Each entry's positions in the owner's and the neighbour's rows
 ** are kept (pos_own, pos_nbr), so the assembly of a time step is one pass
 ** over the stencil entries; the faces between whole Cartesian cells, whose
-** rows are the two cells themselves with weight 1 (two_point), keep no
+** rows are the two cells themselves with weight 1 (FVM_TWO_POINT), keep no
 ** positions: theirs are the diagonals and the matrix's face positions.
 ** That keeps 8 bytes per PLUS and MINUS entry off most faces of a cut
 ** grid (97 bytes a cell on a 3-D block grid).  One body, face_terms,
@@ -33,6 +33,7 @@ void fvm_pattern(FvPattern *p, const FvMesh *f, const Interp *ip)
         if (f->empty_face[i]) continue;
         int o = f->m->owner[i], n = face_nbr(f, i);
         for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++) {
+            if (stencil_is_pair(&ip->face, interp_row(i, k))) continue; /* o and n: in the pattern already */
             fvpattern_couple_stencil(p, o, &ip->face, interp_row(i, k));
             if (n >= 0) fvpattern_couple_stencil(p, n, &ip->face, interp_row(i, k));
         }
@@ -68,16 +69,18 @@ static double face_dist(const FvMesh *f, int i)
 static int two_point(const FvMatrix *M, const FvMesh *f, const Stencil *s, int i)
 {
     if (i >= f->ninternal || f->empty_face[i]) return 0;
-    int o = f->m->owner[i], n = f->m->neighbour[i], rp = interp_row(i, INTERP_PLUS), rm = interp_row(i, INTERP_MINUS);
-    return o < M->nrows && n < M->nrows && M->face_pos[2 * i] >= 0 && M->face_pos[2 * i + 1] >= 0 &&
-           s->off[rp + 1] - s->off[rp] == 1 && s->src[s->off[rp]] == n && s->w[s->off[rp]] == 1.0 &&
-           s->off[rm + 1] - s->off[rm] == 1 && s->src[s->off[rm]] == o && s->w[s->off[rm]] == 1.0;
+    int o = f->m->owner[i], n = f->m->neighbour[i];
+    StencilRow p, q;
+    stencil_row(s, interp_row(i, INTERP_PLUS), &p);
+    stencil_row(s, interp_row(i, INTERP_MINUS), &q);
+    return o < M->nrows && n < M->nrows && M->face_pos[2 * i] >= 0 && M->face_pos[2 * i + 1] >= 0 && p.n == 1 &&
+           p.src[0] == n && p.w[0] == 1.0 && q.n == 1 && q.src[0] == o && q.w[0] == 1.0;
 }
 
 /* Entries of face i's PLUS and MINUS rows. */
 static int face_entries(const Stencil *s, int i)
 {
-    return s->off[interp_row(i, INTERP_MINUS) + 1] - s->off[interp_row(i, INTERP_PLUS)];
+    return stencil_row_len(s, interp_row(i, INTERP_PLUS)) + stencil_row_len(s, interp_row(i, INTERP_MINUS));
 }
 
 /* Positions of the PLUS and MINUS rows' entries of face i, from
@@ -87,10 +90,14 @@ static int face_positions(Fvm *d, const FvMatrix *M, int i)
     const FvMesh *f = d->f;
     const Stencil *s = &d->ip->face;
     int o = f->m->owner[i], n = face_nbr(f, i), missing = 0, q = d->pos_off[i];
-    for (int j = s->off[interp_row(i, INTERP_PLUS)]; j < s->off[interp_row(i, INTERP_MINUS) + 1]; j++, q++) {
-        d->pos_own[q] = source_pos(M, f, o, s->src[j]);
-        d->pos_nbr[q] = source_pos(M, f, n, s->src[j]);
-        missing += (o < M->nrows && d->pos_own[q] < 0) + (n >= 0 && n < M->nrows && d->pos_nbr[q] < 0);
+    for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++) {
+        StencilRow row;
+        stencil_row(s, interp_row(i, k), &row);
+        for (int j = 0; j < row.n; j++, q++) {
+            d->pos_own[q] = source_pos(M, f, o, row.src[j]);
+            d->pos_nbr[q] = source_pos(M, f, n, row.src[j]);
+            missing += (o < M->nrows && d->pos_own[q] < 0) + (n >= 0 && n < M->nrows && d->pos_nbr[q] < 0);
+        }
     }
     return missing;
 }
@@ -100,13 +107,15 @@ static void face_layout(Fvm *d, const FvMatrix *M)
 {
     const FvMesh *f = d->f;
     const Stencil *s = &d->ip->face;
-    d->two_point = mem_calloc((size_t)f->nfaces + 1, 1);
+    d->kind = mem_calloc((size_t)f->nfaces + 1, 1);
     d->pos_off = mem_alloc(sizeof(int) * ((size_t)f->nfaces + 1));
     int q = 0;
     for (int i = 0; i < f->nfaces; i++) {
         d->pos_off[i] = q;
-        d->two_point[i] = (char)two_point(M, f, s, i);
-        if (!f->empty_face[i] && !d->two_point[i]) q += face_entries(s, i);
+        d->kind[i] = (char)(two_point(M, f, s, i) ? FVM_TWO_POINT : 0);
+        if (i >= f->ninternal && !f->empty_face[i] && d->bc->fixed_grad[bc_slot(d->bc, i - f->ninternal)])
+            d->kind[i] = FVM_NEUMANN;
+        if (!f->empty_face[i] && d->kind[i] != FVM_TWO_POINT) q += face_entries(s, i);
     }
     d->pos_off[f->nfaces] = q;
     d->pos_own = mem_alloc(sizeof(int) * ((size_t)q + 1));
@@ -119,11 +128,12 @@ static int face_has_rhs(const Fvm *d, int i)
 {
     const FvMesh *f = d->f;
     const Stencil *s = &d->ip->face;
-    if (i >= f->ninternal && d->bc->fixed_grad[i - f->ninternal]) return 1;
+    if (d->kind[i] == FVM_NEUMANN) return 1;
     for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++) {
-        int r = interp_row(i, k);
-        for (int j = s->off[r]; j < s->off[r + 1]; j++)
-            if (s->src[j] >= f->ncells) return 1;
+        StencilRow row;
+        stencil_row(s, interp_row(i, k), &row);
+        for (int j = 0; j < row.n; j++)
+            if (row.src[j] >= f->ncells) return 1;
     }
     return 0;
 }
@@ -149,7 +159,7 @@ int fvm_init(Fvm *d, const FvMatrix *M, const FvMesh *f, const Interp *ip, const
     int missing = 0;
     for (int i = 0; i < f->nfaces; i++) {
         d->dist[i] = face_dist(f, i);
-        if (!f->empty_face[i] && !d->two_point[i]) missing += face_positions(d, M, i);
+        if (!f->empty_face[i] && d->kind[i] != FVM_TWO_POINT) missing += face_positions(d, M, i);
     }
     if (missing) {
         fvm_free(d);
@@ -166,7 +176,7 @@ void fvm_free(Fvm *d)
     free(d->pos_own);
     free(d->pos_nbr);
     free(d->pos_off);
-    free(d->two_point);
+    free(d->kind);
     free(d->rhs_face);
     memset(d, 0, sizeof *d);
 }
@@ -176,7 +186,7 @@ enum { FVM_MATRIX = 1, FVM_RHS = 2 };
 
 /* Adds c * (row r's value) to matrix row `row`, pos the positions of
    r's entries in it (boundary sources through the boundary condition's a
-   and b): the parts `what` asks for. */
+   and b): the parts `what` asks for.  Not a pair row (face_terms). */
 static inline void add_row(FvMatrix *M, const Fvm *d, const int *pos, int row, int r, int k, double c, int what)
 {
     const Stencil *s = &d->ip->face;
@@ -189,7 +199,7 @@ static inline void add_row(FvMatrix *M, const Fvm *d, const int *pos, int row, i
             if (what & FVM_MATRIX) M->val[pos[j - j0]] += w;
             continue;
         }
-        size_t bk = (size_t)(src - nc) * (size_t)bc->width + (size_t)k;
+        size_t bk = (size_t)bc_slot(bc, src - nc) * (size_t)bc->width + (size_t)k;
         if (what & FVM_MATRIX) M->val[pos[j - j0]] += w * bc->a[bk];
         if (what & FVM_RHS) M->rhs[row] -= w * bc->b[bk];
     }
@@ -197,19 +207,15 @@ static inline void add_row(FvMatrix *M, const Fvm *d, const int *pos, int row, i
 
 /* The number of entries of face i's PLUS row (its MINUS row's positions
    follow them). */
-static inline int plus_len(const Fvm *d, int i)
-{
-    const Stencil *s = &d->ip->face;
-    return s->off[interp_row(i, INTERP_PLUS) + 1] - s->off[interp_row(i, INTERP_PLUS)];
-}
+static inline int plus_len(const Fvm *d, int i) { return stencil_row_len(&d->ip->face, interp_row(i, INTERP_PLUS)); }
 
 /* A Neumann boundary face: F = G |S| (ga u(MINUS) + gb). */
 static inline void neumann_face(const Fvm *d, FvMatrix *M, int i, int k, double gamma, int what)
 {
     const FvMesh *f = d->f;
     const Bc *bc = d->bc;
-    int b = i - f->ninternal, o = f->m->owner[i];
-    size_t bk = (size_t)b * (size_t)bc->width + (size_t)k;
+    int o = f->m->owner[i];
+    size_t bk = (size_t)bc_slot(bc, i - f->ninternal) * (size_t)bc->width + (size_t)k;
     double G = gamma * f->mag_sf[i];
     if (what & FVM_RHS) M->rhs[o] += G * bc->gb[bk];
     if (bc->ga[bk] != 0)
@@ -217,17 +223,34 @@ static inline void neumann_face(const Fvm *d, FvMatrix *M, int i, int k, double 
                 what);
 }
 
+/* The terms of a face whose rows are a stencil pair's (stencil.h) but
+   not FVM_TWO_POINT, because one of its cells is not a row of ours (a
+   halo cell): cells only, so matrix entries only, F = D (u_N - u_C). */
+static void pair_face_terms(const Fvm *d, FvMatrix *M, int i, double D)
+{
+    const Stencil *s = &d->ip->face;
+    int o = d->f->m->owner[i], n = face_nbr(d->f, i), q = d->pos_off[i];
+    double sgn[2] = {-D, D}; /* PLUS (the neighbour), MINUS (the owner) in the owner's row */
+    for (int k = INTERP_PLUS; k <= INTERP_MINUS; k++, q++) {
+        StencilRow sr;
+        stencil_row(s, interp_row(i, k), &sr);
+        double c = sgn[k - INTERP_PLUS] * sr.w[0];
+        if (o < M->nrows) M->val[d->pos_own[q]] += c;
+        if (n >= 0 && n < M->nrows) M->val[d->pos_nbr[q]] -= c;
+    }
+}
+
 /* Face i's terms (not an empty face). */
 static inline void face_terms(const Fvm *d, FvMatrix *M, int i, int k, double gamma, int what)
 {
     const FvMesh *f = d->f;
     int o = f->m->owner[i], n = face_nbr(f, i);
-    if (i >= f->ninternal && d->bc->fixed_grad[i - f->ninternal]) {
+    if (d->kind[i] == FVM_NEUMANN) {
         if (o < M->nrows) neumann_face(d, M, i, k, gamma, what);
         return;
     }
     double D = gamma * f->mag_sf[i] / d->dist[i];
-    if (d->two_point[i]) { /* the general case below with weights 1 */
+    if (d->kind[i] == FVM_TWO_POINT) { /* the general case below with weights 1 */
         if (what & FVM_MATRIX) {
             M->val[M->face_pos[2 * i]] += -D;
             M->val[M->diag[o]] += D;
@@ -237,6 +260,10 @@ static inline void face_terms(const Fvm *d, FvMatrix *M, int i, int k, double ga
         return;
     }
     int rp = interp_row(i, INTERP_PLUS), rm = interp_row(i, INTERP_MINUS), np = plus_len(d, i);
+    if (stencil_is_pair(&d->ip->face, rp)) {
+        if (what & FVM_MATRIX) pair_face_terms(d, M, i, D);
+        return;
+    }
     const int *po = d->pos_own + d->pos_off[i], *pn = d->pos_nbr + d->pos_off[i];
     if (o < M->nrows) { /* -F in the owner's row */
         add_row(M, d, po, o, rp, k, -D, what);
@@ -270,33 +297,29 @@ int fvm_same_matrix(const Fvm *d, int k1, int k2)
 {
     const Bc *bc = d->bc;
     size_t w = (size_t)bc->width;
-    for (int p = 0; p < bc->npatches; p++) {
-        const BcPatch *bp = &bc->patch[p];
-        if (bp->kind == BC_EMPTY) continue; /* never assembled, never a source */
-        for (int b = bp->start - d->f->ninternal; b < bp->start - d->f->ninternal + bp->size; b++)
-            if (bc->a[b * w + (size_t)k1] != bc->a[b * w + (size_t)k2] ||
-                bc->ga[b * w + (size_t)k1] != bc->ga[b * w + (size_t)k2])
-                return 0;
-    }
+    for (int s = 0; s < bc->nslots; s++) /* empty faces have none: never assembled, never a source */
+        if (bc->a[s * w + (size_t)k1] != bc->a[s * w + (size_t)k2] || bc->ga[s * w + (size_t)k1] != bc->ga[s * w + (size_t)k2])
+            return 0;
     return 1;
 }
 
 /* Value of row r on component k of u (boundary sources: a u_owner + b). */
 static double row_value(const Fvm *d, const double *u, int r, int k)
 {
-    const Stencil *s = &d->ip->face;
     const Bc *bc = d->bc;
     const FvMesh *f = d->f;
     int nc = f->ncells, wd = bc->width;
+    StencilRow sr;
+    stencil_row(&d->ip->face, r, &sr);
     double v = 0;
-    for (int j = s->off[r]; j < s->off[r + 1]; j++) {
-        int src = s->src[j];
+    for (int j = 0; j < sr.n; j++) {
+        int src = sr.src[j];
         if (src < nc) {
-            v += s->w[j] * u[(size_t)src * wd + k];
+            v += sr.w[j] * u[(size_t)src * wd + k];
             continue;
         }
-        size_t bk = (size_t)(src - nc) * (size_t)wd + (size_t)k;
-        v += s->w[j] * (bc->a[bk] * u[(size_t)f->m->owner[f->ninternal + src - nc] * wd + k] + bc->b[bk]);
+        size_t bk = (size_t)bc_slot(bc, src - nc) * (size_t)wd + (size_t)k;
+        v += sr.w[j] * (bc->a[bk] * u[(size_t)f->m->owner[f->ninternal + src - nc] * wd + k] + bc->b[bk]);
     }
     return v;
 }
@@ -310,9 +333,9 @@ void fvm_face_flux(const Fvm *d, const double *u, int k, double gamma, double *f
         flux[i] = 0;
         if (f->empty_face[i]) continue;
         double G = gamma * f->mag_sf[i];
-        int b = i - f->ninternal;
-        if (i >= f->ninternal && bc->fixed_grad[b]) {
-            size_t bk = (size_t)b * (size_t)wd + (size_t)k;
+        int s = i >= f->ninternal ? bc_slot(bc, i - f->ninternal) : -1;
+        if (s >= 0 && bc->fixed_grad[s]) {
+            size_t bk = (size_t)s * (size_t)wd + (size_t)k;
             flux[i] = G * (bc->gb[bk] + (bc->ga[bk] != 0 ? bc->ga[bk] * row_value(d, u, interp_row(i, INTERP_MINUS), k) : 0));
         } else {
             flux[i] = G / d->dist[i] *

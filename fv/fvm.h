@@ -52,15 +52,19 @@
 #include "fvmesh.h"
 #include "interp.h"
 
+enum { FVM_TWO_POINT = 1, FVM_NEUMANN = 2 };
+
 /* The positions of the diffusion operator's entries on one matrix. */
 typedef struct Fvm {
     const FvMesh *f;
     const Interp *ip;
     const Bc *bc;
     double *dist;   /* nfaces: the distance dividing PLUS - MINUS */
-    char *two_point;  /* nfaces: PLUS the neighbour, MINUS the owner, weights
-                         1 (faces between whole Cartesian cells): the
-                         entries are diag and FvMatrix.face_pos */
+    char *kind;     /* nfaces: FVM_TWO_POINT (PLUS the neighbour, MINUS the
+                       owner, weights 1: faces between whole Cartesian
+                       cells; the entries are diag and FvMatrix.face_pos),
+                       FVM_NEUMANN (a boundary face whose gradient is
+                       given), or 0 */
     int *pos_off;   /* nfaces + 1: the other faces' PLUS then MINUS
                        entries have their positions at pos_own[pos_off[i]
                        ...], pos_nbr[...] */

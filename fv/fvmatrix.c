@@ -44,8 +44,10 @@ void fvpattern_couple(FvPattern *p, int row, int col)
 void fvpattern_couple_stencil(FvPattern *p, int row, const Stencil *s, int r)
 {
     const FvMesh *f = p->f;
-    for (int k = s->off[r]; k < s->off[r + 1]; k++) {
-        int q = s->src[k];
+    StencilRow sr;
+    stencil_row(s, r, &sr);
+    for (int k = 0; k < sr.n; k++) {
+        int q = sr.src[k];
         fvpattern_couple(p, row, q < f->ncells ? q : f->m->owner[f->ninternal + q - f->ncells]);
     }
 }
@@ -176,8 +178,10 @@ int fvmatrix_pos(const FvMatrix *M, int row, int col)
 int fvmatrix_stencil_pos(const FvMatrix *M, int row, const Stencil *s, int r, int *pos)
 {
     int missing = 0;
-    for (int k = s->off[r]; k < s->off[r + 1]; k++) {
-        int q = s->src[k], j = k - s->off[r];
+    StencilRow sr;
+    stencil_row(s, r, &sr);
+    for (int j = 0; j < sr.n; j++) {
+        int q = sr.src[j];
         pos[j] = q < M->ncols ? fvmatrix_pos(M, row, q) : -1;
         missing += q < M->ncols && pos[j] < 0;
     }
@@ -186,10 +190,10 @@ int fvmatrix_stencil_pos(const FvMatrix *M, int row, const Stencil *s, int r, in
 
 void fvmatrix_add_stencil(FvMatrix *M, const int *pos, const Stencil *s, int r, double a)
 {
-    for (int k = s->off[r]; k < s->off[r + 1]; k++) {
-        int j = pos[k - s->off[r]];
-        if (j >= 0) M->val[j] += a * s->w[k];
-    }
+    StencilRow sr;
+    stencil_row(s, r, &sr);
+    for (int k = 0; k < sr.n; k++)
+        if (pos[k] >= 0) M->val[pos[k]] += a * sr.w[k];
 }
 
 void fvmatrix_mult(const FvMatrix *M, const double *x, double *y)

@@ -90,8 +90,8 @@ void fvmatrix_zero_rhs(FvMatrix *M);
 /* Position of (row, col), or -1 when it is not in the pattern. */
 int fvmatrix_pos(const FvMatrix *M, int row, int col);
 
-/* Positions, for row row, of the sources of row r of s: pos[k] for source
-   k = s->off[r] .. s->off[r+1]-1, stored at pos[k - s->off[r]]; -1 for a
+/* Positions, for row row, of the sources of row r of s: pos[j] for its
+   entry j (stencil_row's order, a pair row's included); -1 for a
    boundary source (the boundary condition places it) or a cell the
    pattern lacks (the row was not named in fvpattern_couple_stencil).
    Returns the number of -1 entries for cell sources (0 when the pattern

@@ -54,8 +54,8 @@ static double plane_distance(const FvMesh *f, int i, const double *x)
 
 void fvmesh_cyclic_shift(const FvMesh *f, int i, double T[3])
 {
-    const double *a = f->m->face_centre + 3 * i, *b = f->m->face_centre + 3 * f->cyc_face[i - f->ninternal];
-    for (int k = 0; k < 3; k++) T[k] = b[k] - a[k];
+    int p = f->face_patch[i - f->ninternal];
+    memcpy(T, f->cyc_shift + 3 * ((size_t)f->cyc_base[p] + (size_t)(i - f->m->patches[p].start)), 3 * sizeof *T);
 }
 
 int fvmesh_across(const FvMesh *f, int i, double x[3])
@@ -75,18 +75,33 @@ int fvmesh_across(const FvMesh *f, int i, double x[3])
 }
 
 /* Faces of a cyclic patch pair in order with its neighbourPatch's (the
-   geometry is bc.c's to check); unpaired patches stay boundaries. */
+   geometry is bc.c's to check); unpaired patches stay boundaries.  Each
+   face's translation, partner centre - own centre, is kept: the face
+   centres go at the end of the set-up. */
 static void cyclic_pairs(FvMesh *f)
 {
     const Mesh *m = f->m;
+    int n = 0;
+    f->cyc_base = mem_alloc(((size_t)m->npatches + 1) * sizeof(int));
     for (int b = 0; b < f->nboundary; b++) f->cyc_face[b] = -1;
     for (int p = 0; p < m->npatches; p++) {
         const Patch *pa = &m->patches[p];
+        f->cyc_base[p] = -1;
         if (!pa->type || strcmp(pa->type, "cyclic") || !pa->neighbour) continue;
         int q = mesh_patch(m, pa->neighbour);
         if (q < 0 || q == p || m->patches[q].size != pa->size) continue;
         for (int i = 0; i < pa->size; i++) f->cyc_face[pa->start + i - f->ninternal] = m->patches[q].start + i;
+        f->cyc_base[p] = n;
+        n += pa->size;
     }
+    f->cyc_shift = mem_alloc(3 * ((size_t)n + 1) * sizeof(double));
+    for (int p = 0; p < m->npatches; p++)
+        for (int i = 0; i < m->patches[p].size && f->cyc_base[p] >= 0; i++) {
+            int a = m->patches[p].start + i, b = f->cyc_face[a - f->ninternal];
+            for (int k = 0; k < 3; k++)
+                f->cyc_shift[3 * ((size_t)f->cyc_base[p] + (size_t)i) + (size_t)k] =
+                    m->face_centre[3 * b + k] - m->face_centre[3 * a + k];
+        }
 }
 
 /* eq. 4.62-4.63 */
@@ -119,6 +134,8 @@ static void boundary_info(FvMesh *f)
             f->empty_face[i] = (char)mesh_patch_is_empty(pa);
         }
     }
+    f->nslots = 0;
+    for (int b = 0; b < f->nboundary; b++) f->bslot[b] = f->empty_face[f->ninternal + b] ? -1 : f->nslots++;
 }
 
 static void cartesian_info(FvMesh *f)
@@ -159,6 +176,7 @@ int fvmesh_init(FvMesh *f, Mesh *m, Err *e)
     f->h = mem_alloc(nf * sizeof(double));
     f->ht = mem_alloc(nf * sizeof(double));
     f->face_patch = mem_alloc(((size_t)f->nboundary + 1) * sizeof(int));
+    f->bslot = mem_alloc(((size_t)f->nboundary + 1) * sizeof(int));
     f->empty_face = mem_calloc(nf, 1);
     f->cartesian_face = mem_calloc(nf, 1);
     f->cyc_face = mem_alloc(((size_t)f->nboundary + 1) * sizeof(int));
@@ -179,10 +197,24 @@ void fvmesh_free(FvMesh *f)
     free(f->h);
     free(f->ht);
     free(f->face_patch);
+    free(f->bslot);
     free(f->empty_face);
     free(f->cartesian_face);
     free(f->cyc_face);
+    free(f->cyc_base);
+    free(f->cyc_shift);
     memset(f, 0, sizeof *f);
+}
+
+void fvmesh_end_setup(FvMesh *f)
+{
+    Mesh *m = f->m;
+    void *arr[] = {f->nf, f->h, f->ht, f->cartesian_face, m->face_centre, m->boundary_normal, m->cell_off, m->cell_faces};
+    for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
+    f->nf = f->h = f->ht = NULL;
+    f->cartesian_face = NULL;
+    m->face_centre = m->boundary_normal = NULL;
+    m->cell_off = m->cell_faces = NULL;
 }
 
 int fvmesh_has_cartesian(const FvMesh *f) { return f->m->cart.n[0] > 0 && f->m->cartcells.n > 0; }

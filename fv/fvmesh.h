@@ -46,12 +46,21 @@ typedef struct FvMesh {
                              the Mesh's cell_seed or cell_centre itself */
     double *h, *ht;       /* nfaces: h_f and ht_f of eq. 4.62-4.63 */
     int *face_patch;      /* nboundary: patch of boundary face ninternal + i */
+    int nslots;           /* boundary faces that are not empty */
+    int *bslot;           /* nboundary: boundary face b's index among those
+                             (in face order), -1 for an empty face: where
+                             per-face boundary data without the empty
+                             faces keep it (fv/bc.h) */
     char *empty_face;     /* nfaces: 1 on faces of empty patches (no flux) */
     char *cartesian_face; /* nfaces: 1 between two whole Cartesian cells
                              (eq. 4.61: the face value is the mean),
                              cyclic faces included */
     int *cyc_face;        /* nboundary: the partner face of a cyclic face,
                              else -1 */
+    int *cyc_base;        /* npatches: where a cyclic patch's translations
+                             start in cyc_shift, else -1 */
+    double *cyc_shift;    /* 3 per face of a cyclic patch: its periodic
+                             translation (fvmesh_cyclic_shift) */
     double hcart[3];      /* smallest Cartesian spacing per axis, or 0 */
 } FvMesh;
 
@@ -60,6 +69,18 @@ typedef struct FvMesh {
    (zero area or volume) or a node on a face's plane. */
 int fvmesh_init(FvMesh *f, Mesh *m, Err *e);
 void fvmesh_free(FvMesh *f);
+
+/* The end of the set-up: frees what only building the scheme reads, once
+   every builder has run (bc_init, bc_check_open, interp_init, hydro_init,
+   fvm_pattern and fvm_init, tvd_init): FvMesh's nf, h, ht and
+   cartesian_face, and the Mesh's face_centre, boundary_normal and cell
+   face lists (cell_off, cell_faces), all then NULL: about 220 bytes a
+   cell of a 3-D block grid.  What the time steps and the writers read
+   stays: the areas, volumes, nodes, owner and neighbour, the faces and
+   points, the flags, the periodic translations (fvmesh_across and
+   fvmesh_cyclic_shift keep working).  interp_point, which builds at the
+   points of the faces, cannot be called afterwards. */
+void fvmesh_end_setup(FvMesh *f);
 
 /* Cartesian data contract present (cartesianGrid and cartesianCells)? */
 int fvmesh_has_cartesian(const FvMesh *f);

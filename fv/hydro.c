@@ -85,10 +85,7 @@ static void face_weights(Hydro *h, const Images *im)
     const Stencil *s = &h->ip->face;
     h->off = mem_alloc(sizeof(int) * ((size_t)f->nfaces + 1));
     h->off[0] = 0;
-    for (int i = 0; i < f->nfaces; i++) {
-        int r = interp_row(i, INTERP_CENTRE);
-        h->off[i + 1] = h->off[i] + s->off[r + 1] - s->off[r];
-    }
+    for (int i = 0; i < f->nfaces; i++) h->off[i + 1] = h->off[i] + stencil_row_len(s, interp_row(i, INTERP_CENTRE));
     h->w = mem_alloc(sizeof(double) * ((size_t)h->off[f->nfaces] + 1));
     for (int i = 0; i < f->nfaces; i++) {
         int r = interp_row(i, INTERP_CENTRE), g = i >= f->ninternal ? f->cyc_face[i - f->ninternal] : -1;
@@ -98,10 +95,12 @@ static void face_weights(Hydro *h, const Images *im)
             continue;
         }
         const double *xf = f->m->face_centre + 3 * i;
-        for (int k = s->off[r]; k < s->off[r + 1]; k++) {
+        StencilRow sr;
+        stencil_row(s, r, &sr);
+        for (int k = 0; k < sr.n; k++) {
             double p[3];
-            source_at(im, f, s->src[k], xf, p);
-            w[k - s->off[r]] = s->w[k] * profile(h->a, xf, p);
+            source_at(im, f, sr.src[k], xf, p);
+            w[k] = sr.w[k] * profile(h->a, xf, p);
         }
     }
 }
@@ -201,12 +200,14 @@ void hydro_init(Hydro *h, const FvMesh *f, const Interp *ip, const double g[3], 
     h->f = f;
     h->ip = ip;
     for (int k = 0; k < 3; k++) h->a[k] = g[k] / RsT;
+    if (h->a[0] == 0 && h->a[1] == 0 && h->a[2] == 0) return; /* the plain rows; nothing to store */
     Images im;
     images_init(&im, f);
     face_weights(h, &im);
     gravity_vectors(h);
     stencil_init(&h->wall);
     for (int b = 0; b < f->nboundary; b++) wall_row(h, b);
+    stencil_trim(&h->wall);
 }
 
 void hydro_free(Hydro *h)
@@ -220,18 +221,39 @@ void hydro_free(Hydro *h)
 
 double hydro_face(const Hydro *h, int i, const double *pc, const double *pb)
 {
-    const Stencil *s = &h->ip->face;
     int r = interp_row(i, INTERP_CENTRE), nc = h->f->ncells;
-    const double *w = h->w + h->off[i] - s->off[r];
+    if (!h->w) return stencil_apply(&h->ip->face, r, nc, pc, pb);
+    StencilRow sr;
+    stencil_row(&h->ip->face, r, &sr);
+    const double *w = h->w + h->off[i];
     double v = 0;
-    for (int k = s->off[r]; k < s->off[r + 1]; k++) {
-        int q = s->src[k];
+    for (int k = 0; k < sr.n; k++) {
+        int q = sr.src[k];
         v += w[k] * (q < nc ? pc[q] : pb[q - nc]);
     }
     return v;
 }
 
+void hydro_force(const Hydro *h, const double *pc, const double *pb, double *out)
+{
+    const FvMesh *f = h->f;
+    const Mesh *m = f->m;
+    memset(out, 0, sizeof(double) * 3 * (size_t)f->ncells);
+    for (int i = 0; i < f->nfaces; i++) {
+        if (f->empty_face[i]) continue;
+        double p = hydro_face(h, i, pc, pb);
+        const double *S = m->face_area + 3 * i;
+        double *fo = out + 3 * m->owner[i];
+        for (int k = 0; k < 3; k++) fo[k] += p * S[k];
+        if (i < f->ninternal) {
+            double *fn = out + 3 * m->neighbour[i];
+            for (int k = 0; k < 3; k++) fn[k] -= p * S[k];
+        }
+    }
+}
+
 double hydro_boundary(const Hydro *h, int b, const double *pc)
 {
+    if (!h->wall.off) return 0.0 + pc[h->f->m->owner[h->f->ninternal + b]]; /* the row's sum, 0 + 1 p_P */
     return stencil_apply(&h->wall, b, h->f->ncells, pc, NULL);
 }

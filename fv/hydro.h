@@ -51,11 +51,15 @@
 ** constant: the discrete rest state of every grid.  Since the weights of
 ** a row sum to one, p_f = RsT C exp(a.x_f) on every face there, whatever
 ** the stencil.  With a = 0 the weights are the CENTRE row's, bit for
-** bit, and the gravity vectors are zero.
+** bit, and the gravity vectors are zero: with g = 0 nothing is stored
+** (w, off, grav NULL, no wall rows), hydro_face is the CENTRE row itself
+** and hydro_boundary the owner's pressure, the same numbers as the stored
+** weights gave.
 **
-** Memory: one double per entry of the CENTRE rows (the face stencil
-** holds three rows per face), nfaces + 1 offsets, three doubles per cell
-** and a row of the owner's neighbourhood per boundary face.
+** Memory (g != 0): one double per entry of the CENTRE rows (a pair row,
+** stencil.h, counts its two), nfaces + 1 offsets, three doubles per cell
+** and a row of the owner's neighbourhood per boundary face; none with
+** g = 0 (about 85 bytes a cell of a 3-D block grid).
 */
 #ifndef KIESEL_HYDRO_H
 #define KIESEL_HYDRO_H
@@ -69,11 +73,14 @@ typedef struct Hydro {
     double a[3];       /* g / RsT */
     int *off;          /* nfaces + 1: face i's weights are w[off[i] ..
                           off[i+1]-1], one per source of its CENTRE row, in
-                          the row's order */
-    double *w;         /* the CENTRE rows' weights times exp(a.(x_f - x_s)) */
+                          stencil_row's order; NULL when g = 0 */
+    double *w;         /* the CENTRE rows' weights times exp(a.(x_f - x_s));
+                          NULL when g = 0 (the rows' own weights) */
     Stencil wall;      /* nboundary rows: the pressure of boundary face b
-                          from the cells (walls, zero gradient) */
-    double *grav;      /* 3 ncells: sum_f expm1(a.(x_f - x_C)) S_f */
+                          from the cells (walls, zero gradient); none (off
+                          NULL) when g = 0: the owner's */
+    double *grav;      /* 3 ncells: sum_f expm1(a.(x_f - x_C)) S_f; NULL
+                          when g = 0 (zero) */
 } Hydro;
 
 /* The weights of the grid f and the face stencils ip for gravity g and
@@ -84,6 +91,12 @@ void hydro_free(Hydro *h);
 /* p_f of face i from the cell pressures pc (ncells) and the boundary
    pressures pb (one per boundary face). */
 double hydro_face(const Hydro *h, int i, const double *pc, const double *pb);
+
+/* The force of the face pressures p_f = hydro_face on every cell:
+   out[3c .. 3c+2] = sum over the faces of c (empty ones aside) of p_f S_f,
+   outward.  fvc_pressure_force of those p_f, the same sums in the same
+   order, without an array of them (8 bytes a face). */
+void hydro_force(const Hydro *h, const double *pc, const double *pb, double *out);
 
 /* The pressure of boundary face b taken from the cells (a wall, a zero
    gradient) from the cell pressures pc. */

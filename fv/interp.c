@@ -35,6 +35,11 @@
 
 #include "mem.h"
 
+/* A face's rows are a stencil pair's rows (stencil.h): owner a, neighbour b. */
+_Static_assert((int)INTERP_CENTRE == (int)STENCIL_PAIR_MEAN && (int)INTERP_PLUS == (int)STENCIL_PAIR_B &&
+                   (int)INTERP_MINUS == (int)STENCIL_PAIR_A && (int)INTERP_NPOINTS == (int)STENCIL_GROUP,
+               "interp.h's points are stencil.h's pair rows");
+
 const char *const interp_method_names[] = {"shepard", "multilinear", "none", NULL};
 
 const DictKey interp_keys[] = {
@@ -384,6 +389,9 @@ static void method_row(Interp *ip, int i, int k)
     int own = f->m->owner[i], nb = fvmesh_across(f, i, x);
     if (nb < 0 && k != INTERP_MINUS) {
         stencil_add(s, f->ncells + i - f->ninternal, 1.0); /* eq. 4.61: xi_F */
+    } else if ((ip->o.method == INTERP_NONE || f->cartesian_face[i]) && i < f->ninternal) {
+        stencil_pair_row(s); /* the same two-point rows as below, not stored */
+        return;
     } else if (ip->o.method == INTERP_NONE || f->cartesian_face[i]) {
         if (k != INTERP_PLUS) stencil_add(s, own, k == INTERP_CENTRE ? 0.5 : 1.0);
         if (k != INTERP_MINUS) stencil_add(s, nb, k == INTERP_CENTRE ? 0.5 : 1.0);
@@ -407,11 +415,8 @@ static void face_rows(Interp *ip)
 {
     const FvMesh *f = ip->f;
     for (int i = 0; i < f->nfaces; i++) {
-        if (f->empty_face[i]) {
-            for (int k = 0; k < INTERP_NPOINTS; k++) {
-                stencil_add(&ip->face, f->m->owner[i], 1.0);
-                stencil_end_row(&ip->face);
-            }
+        if (f->empty_face[i]) { /* no flux: zero rows, which nothing reads */
+            for (int k = 0; k < INTERP_NPOINTS; k++) stencil_end_row(&ip->face);
             continue;
         }
         ip->st.ncartesian += f->cartesian_face[i];
@@ -428,11 +433,15 @@ static void face_rows(Interp *ip)
     }
     Stencil *s = &ip->face;
     ip->st.nrows = s->nrows;
+    long entries = 0, rows = 0;
     for (int r = 0; r < s->nrows; r++) {
-        int n = s->off[r + 1] - s->off[r];
+        if (f->empty_face[r / INTERP_NPOINTS]) continue;
+        int n = stencil_row_len(s, r);
+        entries += n;
+        rows++;
         if (n > ip->st.max_size) ip->st.max_size = n;
     }
-    ip->st.mean_size = s->nrows ? (double)s->off[s->nrows] / s->nrows : 0;
+    ip->st.mean_size = rows ? (double)entries / rows : 0;
 }
 
 /* The search index and what hangs on it (multilinear's lattice, the wall
@@ -477,7 +486,9 @@ int interp_init(Interp *ip, const FvMesh *f, const InterpOpts *o, const char *gr
         return -1;
     }
     stencil_init(&ip->face);
+    stencil_pairs(&ip->face, f->m->owner, f->m->neighbour, f->ninternal);
     face_rows(ip);
+    stencil_trim(&ip->face);
     index_drop(ip);
     return 0;
 }

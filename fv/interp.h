@@ -17,7 +17,8 @@
 ** (eq. 4.63, written there with the inner normal of the owner).  A
 ** boundary face's CENTRE row is its boundary value as well (eq. 4.61: xi_F
 ** at a boundary).  A face of an empty patch (2-D front and back) carries
-** no flux; its three rows are the owner's value.  A cyclic face is an
+** no flux; its three rows are empty (zero), and nothing reads them.  A
+** cyclic face is an
 ** internal face of the periodic domain (fvmesh.h: h_f = ht_f, the
 ** partner's owner across it): its PLUS point is taken at its periodic
 ** image x_f + n_f ht_f + T_f inside the box (interp_face_point), and the
@@ -25,8 +26,11 @@
 **
 ** Eq. 4.61's face rule comes first for every method: on a face between two
 ** whole Cartesian cells (FvMesh.cartesian_face) CENTRE is the mean of the
-** two cells, PLUS the neighbour and MINUS the owner.  Elsewhere the method
-** of system/fvSchemes decides:
+** two cells, PLUS the neighbour and MINUS the owner.  On an internal face
+** these are stored as the stencil's pair rows (stencil.h: the pairs are
+** the internal faces' owner and neighbour), which hold no entries: read
+** the rows through stencil_row or stencil_apply, never off/src/w
+** directly.  Elsewhere the method of system/fvSchemes decides:
 **
 **   interpolationSchemes
 **   {
@@ -95,7 +99,8 @@ typedef struct InterpStats {
     int nlin;              /* PLUS/MINUS rows next to walls corrected to
                               linear exactness (interp_lin.c) */
     int nlinskip;          /* ... left as they were: sources not spanning */
-    double mean_size;      /* stencil size (entries per row): mean, max */
+    double mean_size;      /* stencil size (entries per row, a pair row's
+                              counted; rows of faces that carry flux): mean, max */
     int max_size;
 } InterpStats;
 

@@ -3,7 +3,8 @@
 **
 ** The open row is off[nrows] .. off[nrows+1]-1: off always has room for
 ** nrows + 2 entries, so adding to the open row and closing it never
-** reallocate twice.
+** reallocate twice.  A pair row is an empty row like any other; only the
+** readers (stencil_row) tell it apart, by the pairs being named.
 */
 #include "stencil.h"
 
@@ -51,9 +52,30 @@ int stencil_end_row(Stencil *s)
     return r;
 }
 
+void stencil_trim(Stencil *s)
+{
+    size_t n = (size_t)s->off[s->nrows + 1];
+    s->row_cap = (size_t)s->nrows + 2;
+    s->off = mem_realloc(s->off, s->row_cap * sizeof *s->off);
+    s->cap = n + 1;
+    s->src = mem_realloc(s->src, (n + 1) * sizeof *s->src);
+    s->w = mem_realloc(s->w, (n + 1) * sizeof *s->w);
+}
+
+void stencil_pairs(Stencil *s, const int *a, const int *b, int n)
+{
+    s->pa = a;
+    s->pb = b;
+    s->npairs = n;
+}
+
+int stencil_pair_row(Stencil *s) { return stencil_end_row(s); }
+
 double stencil_row_sum(const Stencil *s, int r)
 {
+    StencilRow row;
+    stencil_row(s, r, &row);
     double v = 0;
-    for (int k = s->off[r]; k < s->off[r + 1]; k++) v += s->w[k];
+    for (int k = 0; k < row.n; k++) v += row.w[k];
     return v;
 }

@@ -1,6 +1,6 @@
 /*
-** test_io.c: atomic writes, gzip round trips, .gz fallback, and errors of
-** io.c; directory commits (io_commit_dir) and the recovery rules of
+** test_io.c: atomic writes (whole, in pieces, as a stream), gzip round
+** trips, .gz fallback, and errors of io.c; directory commits (io_commit_dir) and the recovery rules of
 ** io_recover_dir; the Err message format of err.c; mem/buf basics.
 */
 #include "buf.h"
@@ -172,6 +172,56 @@ TEST(full_disk_keeps_old_file)
     buf_free(&b);
     free(dir);
     free(data);
+    free(p);
+}
+
+/* A file written in parts (IoStream): the same bytes as one write, the
+   stale .gz beside it removed; an aborted or failing stream keeps the old
+   file and leaves no temporary file. */
+TEST(stream_parts)
+{
+    char *p = tmp_path("s.txt"), *gz = mem_alloc(strlen(p) + 4);
+    sprintf(gz, "%s.gz", p);
+    Err e;
+    EXPECT(io_write_atomic(gz, "stale", 5, 0, &e) == 0, "%s", e.msg);
+    IoStream s;
+    EXPECT(io_stream_open(&s, p, &e) == 0, "%s", e.msg);
+    for (int i = 0; i < 1000; i++) io_stream_put(&s, "0123456789", 10);
+    EXPECT(io_stream_close(&s, &e) == 0, "%s", e.msg);
+    Buf b;
+    buf_init(&b);
+    EXPECT(io_read_file(p, &b, NULL, &e) == 0 && b.n == 10000 && !memcmp(b.p + 9990, "0123456789", 10), "content");
+    EXPECT(!io_exists(gz), "the stale %s was kept", gz);
+    /* aborted: the old file stays */
+    EXPECT(io_stream_open(&s, p, &e) == 0, "%s", e.msg);
+    io_stream_put(&s, "new", 3);
+    io_stream_abort(&s);
+    buf_clear(&b);
+    EXPECT(io_read_file(p, &b, NULL, &e) == 0 && b.n == 10000, "an aborted stream replaced the file");
+    /* a failing write (beyond a file-size limit, as a full disk): reported
+       at the close, the old file kept */
+    struct rlimit old, lim;
+    getrlimit(RLIMIT_FSIZE, &old);
+    lim = old;
+    lim.rlim_cur = 4096;
+    signal(SIGXFSZ, SIG_IGN);
+    setrlimit(RLIMIT_FSIZE, &lim);
+    EXPECT(io_stream_open(&s, p, &e) == 0, "%s", e.msg);
+    for (int i = 0; i < 1000; i++) io_stream_put(&s, "abcdefghij", 10);
+    int rc = io_stream_close(&s, &e);
+    setrlimit(RLIMIT_FSIZE, &old);
+    EXPECT(rc == -1, "a stream beyond the size limit succeeded");
+    CONTAINS(e.msg, "write failed");
+    buf_clear(&b);
+    EXPECT(io_read_file(p, &b, NULL, &e) == 0 && b.n == 10000 && b.p[0] == '0', "old file lost");
+    char *dir = mem_strndup(p, (size_t)(strrchr(p, '/') - p));
+    char **names;
+    int k = io_list_dir(dir, &names, &e);
+    EXPECT(k == 1, "%d entries left in the directory (temporary file not removed?)", k);
+    io_free_list(names, k);
+    free(dir);
+    buf_free(&b);
+    free(gz);
     free(p);
 }
 
@@ -370,6 +420,7 @@ int main(void)
     RUN(missing_file_message);
     RUN(failed_write_keeps_old_file);
     RUN(full_disk_keeps_old_file);
+    RUN(stream_parts);
     RUN(mkdir_list_rm);
     RUN(commit_dir_replaces);
     RUN(commit_dir_new_and_empty_dst);

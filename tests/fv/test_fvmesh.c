@@ -3,15 +3,19 @@
 ** normals and areas, the distances h_f and ht_f of eq. 4.62-4.63, the
 ** faces between whole Cartesian cells (eq. 4.61), the nodes, on a block
 ** grid, a cut and merged grid around a sphere, and a 2-D block grid; and
-** the refusal of a grid the scheme would divide by zero on.
+** the refusal of a grid the scheme would divide by zero on; the end of
+** the set-up (fvmesh_end_setup) on a periodic grid.
 */
+#include "block.h"
 #include "cut.h"
 #include "fixture.h"
 #include "fvmesh.h"
+#include "mem.h"
 #include "merge.h"
 #include "test.h"
 
 #include <math.h>
+#include <string.h>
 
 TEST(block_grid)
 {
@@ -116,11 +120,61 @@ TEST(degenerate_face)
     mesh_free(&m);
 }
 
+/* fvmesh_end_setup frees the set-up's geometry and keeps what the steps
+   read: across a cyclic side the cell and its moved node are the same,
+   to the bit, as before; the freed pointers are NULL; the slots number
+   the faces that are not empty. */
+TEST(end_setup)
+{
+    double *x[3];
+    int n[3] = {6, 4, 1};
+    double lo[3] = {0, 0, -0.1}, hi[3] = {1.2, 0.8, 0.1};
+    for (int k = 0; k < 3; k++) {
+        x[k] = mem_alloc(sizeof(double) * (size_t)(n[k] + 1));
+        for (int i = 0; i <= n[k]; i++) x[k][i] = lo[k] + (hi[k] - lo[k]) * i / n[k];
+    }
+    BlockSide side[BLOCK_NSIDES] = {{"left", "cyclic", "right"}, {"right", "cyclic", "left"}, {"walls", "wall", NULL},
+                                    {"walls", "wall", NULL},     {"fb", "empty", NULL},          {"fb", "empty", NULL}};
+    Mesh m;
+    Err e;
+    mesh_init(&m);
+    EXPECT(block_mesh(&m, x, n, side, NULL, "test", NULL, &e) == 0, "%s", e.msg);
+    for (int k = 0; k < 3; k++) free(x[k]);
+    FvMesh f;
+    EXPECT(fvmesh_init(&f, &m, &e) == 0, "%s", e.msg);
+    double *before = mem_alloc(sizeof(double) * 4 * (size_t)f.nfaces), T[3];
+    for (int i = 0; i < f.nfaces; i++) before[4 * i] = fvmesh_across(&f, i, before + 4 * i + 1);
+    int ncyc = 0, bad = 0, nslots = 0;
+    fvmesh_end_setup(&f);
+    for (int i = 0; i < f.nfaces; i++) {
+        double y[3] = {before[4 * i + 1], before[4 * i + 2], before[4 * i + 3]};
+        int c = fvmesh_across(&f, i, y);
+        bad += c != before[4 * i] || memcmp(y, before + 4 * i + 1, sizeof y) != 0;
+        if (i >= f.ninternal && f.cyc_face[i - f.ninternal] >= 0) {
+            ncyc++;
+            fvmesh_cyclic_shift(&f, i, T);
+            bad += fabs(fabs(T[0]) - 1.2) > 1e-15 || fabs(T[1]) > 1e-15 || fabs(T[2]) > 1e-15;
+        }
+    }
+    for (int b = 0; b < f.nboundary; b++) {
+        int want = f.empty_face[f.ninternal + b] ? -1 : nslots++;
+        bad += f.bslot[b] != want;
+    }
+    EXPECT(ncyc == 8 && bad == 0 && nslots == f.nslots && nslots == 8 + 12, "%d cyclic faces, %d differ", ncyc, bad);
+    EXPECT(!f.nf && !f.h && !f.ht && !f.cartesian_face && !m.face_centre && !m.cell_off && !m.cell_faces &&
+               m.face_area && m.cell_vol && f.mag_sf && f.node,
+           "what the set-up alone reads is not freed, or the steps' data is");
+    free(before);
+    fvmesh_free(&f);
+    mesh_free(&m);
+}
+
 int main(void)
 {
     RUN(block_grid);
     RUN(two_d);
     RUN(cut_sphere);
     RUN(degenerate_face);
+    RUN(end_setup);
     return test_summary();
 }

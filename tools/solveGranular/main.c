@@ -161,6 +161,7 @@ static void read_case(Run *r, const Args *a, Interp *ip, FvMesh *fm, Start *st)
     print_warnings(&r->rho);
     print_warnings(&r->U);
     if (gran_init(&r->g, fm, ip, &pr, &sch, &r->rho, &r->U, sol, &e)) err_die(&e);
+    fvmesh_end_setup(fm); /* the set-up's geometry, never read by the steps */
     r->g.time = st->value;
     double zero = 0;
     field_init(&r->p, &r->m, "p", 1, &zero, "calculated");

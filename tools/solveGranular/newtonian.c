@@ -1,14 +1,36 @@
 /*
 ** newtonian.c: model Newtonian (newtonian.h): eq. 5.1 by eq. 4.66.
 **
-** The step computes the new state into its own arrays (rho1, U1) and
-** copies it into the fields only when every solve converged and every
-** value is finite with a positive density, so a failed step loses
-** nothing.  Components are solved in order x, y, z on one matrix,
-** assembled once a step and again only for a component whose boundary
-** coefficients differ (slip), and with one PETSc solver when their
-** fvSolution entries agree (fv/linsolve.h).  The velocity component along the empty axis of a 2-D grid is
-** not solved and keeps its value, as OpenFOAM's solvers do.
+** The step computes the new state into its own arrays (rho1, and mom for
+** the velocity) and copies it into the fields only when every solve
+** converged and every value is finite with a positive density, so a
+** failed step loses nothing.  Components are solved in order x, y, z on
+** one matrix, assembled once a step and again only for a component whose
+** boundary coefficients differ (slip), and with one PETSc solver when
+** their fvSolution entries agree (fv/linsolve.h).  The velocity component
+** along the empty axis of a 2-D grid is not solved and keeps its value,
+** as OpenFOAM's solvers do.
+**
+** Memory: the step is memory-bound (doc/performance.md, "Roofline"), so
+** its work arrays are few and each serves several things in turn:
+**   force  the convection of rho (its first ncells), then of rho u, then
+**          the pressure force;
+**   mom    rho u, then V (rho u)^m / dt minus its convection, the part of
+**          the right-hand side that does not depend on the component's
+**          matrix; once component k is assembled and solved its
+**          solution replaces component k, so after the solves mom holds
+**          u^{m+1};
+**   x      the cell pressures RsT rho of the face pressures, then each
+**          solve's unknown; the Courant number's cells before the step;
+**   xb     U's boundary values (the fluxes), then its states times rho's
+**          (the convection of rho u);
+**   xbr    rho's boundary states (convection, mass flow), then the
+**          boundary pressures.
+** The boundary arrays' entries of empty faces are never written nor read
+** (fv/bc.h skips empty patches).
+** The face pressures go straight into the force (hydro_force), never
+** into an array of faces.  The sums are the same, in the same order, as
+** with an array for each (doc/performance.md: results bit for bit).
 */
 #include "newtonian.h"
 
@@ -85,23 +107,30 @@ static void mark_walls(Granular *g)
     }
 }
 
+/* The work arrays, each used for several things in turn (the lifetimes
+   at the top of the file): 9 doubles a cell and one a face. */
 static void alloc_work(Granular *g)
 {
     size_t nc = (size_t)g->f->ncells + 1, nf = (size_t)g->f->nfaces + 1, nb = (size_t)g->f->nboundary + 1;
     g->phi = mem_calloc(nf, sizeof(double));
-    g->pf = mem_calloc(nf, sizeof(double));
     g->rho1 = mem_alloc(nc * sizeof(double));
-    g->U1 = mem_alloc(3 * nc * sizeof(double));
-    g->rhoU = mem_alloc(3 * nc * sizeof(double));
-    g->conv = mem_alloc(3 * nc * sizeof(double));
+    g->mom = mem_alloc(3 * nc * sizeof(double));
     g->force = mem_alloc(3 * nc * sizeof(double));
-    g->crho = mem_alloc(nc * sizeof(double));
     g->x = mem_alloc(nc * sizeof(double));
-    g->uk = mem_alloc(nc * sizeof(double));
     g->xb = mem_alloc(3 * nb * sizeof(double));
-    g->xb3 = mem_alloc(3 * nb * sizeof(double));
     g->xbr = mem_alloc(nb * sizeof(double));
     g->patch_out = mem_calloc((size_t)g->bc_rho.npatches + 1, sizeof(double));
+}
+
+/* The component u . S_f may leave out: in 2-D the empty axis, when no
+   non-empty face's area has a component along it (that term would add an
+   exact zero to every flux); else -1. */
+static int flux_skip(const FvMesh *f)
+{
+    int e = f->empty_axis;
+    for (int i = 0; i < f->nfaces && e >= 0; i++)
+        if (!f->empty_face[i] && f->m->face_area[3 * i + e] != 0) return -1;
+    return e;
 }
 
 /* The matrix, its diffusion positions and the solvers of the components. */
@@ -144,6 +173,7 @@ int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProp
     if (bc_check_open(&g->bc_rho, &g->bc_U, rho, U, sqrt(pr->RsT), e)) return -1;
     mark_walls(g);
     alloc_work(g);
+    g->flux_skip = flux_skip(f);
     return linsolve_init(e) || init_solvers(g, fvsolution, e) ? -1 : 0;
 }
 
@@ -158,9 +188,8 @@ void gran_free(Granular *g)
     if (g->bc_U.fm) bc_free(&g->bc_U);
     if (g->bc_rho.fm) bc_free(&g->bc_rho);
     tvd_free(&g->tvd);
-    if (g->hy.off) hydro_free(&g->hy);
-    void *arr[] = {g->wall, g->phi, g->pf, g->rho1, g->U1, g->rhoU, g->conv, g->force,
-                   g->crho, g->x,   g->uk, g->xb,   g->xb3, g->xbr,  g->patch_out};
+    if (g->hy.f) hydro_free(&g->hy);
+    void *arr[] = {g->wall, g->phi, g->rho1, g->mom, g->force, g->x, g->xb, g->xbr, g->patch_out};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
     free(g->src_rho);
     free(g->src_m);
@@ -205,22 +234,42 @@ static void component(const FvMesh *f, const double *v, int k, double *out)
     for (int c = 0; c < f->ncells; c++) out[c] = v[3 * c + k];
 }
 
+/* u_f . S_f of face i (not empty, not a wall) from its CENTRE row over
+   the cell velocities U and the boundary values ub (3 each), component
+   skip left out: u_f = sum_s w_s u_s (eq. 4.61), summed as stencil_apply
+   sums, and the products added component by component from 0. */
+static inline double face_flux(const Stencil *s, int i, int nc, const double *U, const double *ub, const double *S,
+                               int skip)
+{
+    double uf[3] = {0, 0, 0}, phi = 0;
+    int r = interp_row(i, INTERP_CENTRE);
+    if (stencil_is_pair(s, r)) { /* eq. 4.61: the mean of the two cells */
+        const double *a = U + 3 * (size_t)s->pa[i], *b = U + 3 * (size_t)s->pb[i];
+        for (int k = 0; k < 3; k++) uf[k] += 0.5 * a[k], uf[k] += 0.5 * b[k];
+    } else {
+        for (int j = s->off[r]; j < s->off[r + 1]; j++) {
+            int q = s->src[j];
+            const double *u = q < nc ? U + 3 * (size_t)q : ub + 3 * (size_t)(q - nc);
+            for (int k = 0; k < 3; k++) uf[k] += s->w[j] * u[k];
+        }
+    }
+    for (int k = 0; k < 3; k++)
+        if (k != skip) phi += uf[k] * S[k];
+    return phi;
+}
+
 void gran_flux(Granular *g)
 {
     double t0 = now();
     const FvMesh *f = g->f;
-    const Stencil *s = &g->ip->face;
-    bc_update(&g->bc_U, g->U->v);
-    memset(g->phi, 0, sizeof(double) * (size_t)f->nfaces);
-    for (int k = 0; k < 3; k++) {
-        component(f, g->U->v, k, g->uk);
-        bc_values_component(&g->bc_U, g->U->v, k, g->xb);
-        for (int i = 0; i < f->nfaces; i++) {
-            if (f->empty_face[i] || (i >= f->ninternal && g->wall[i - f->ninternal])) continue;
-            double uf = stencil_apply(s, interp_row(i, INTERP_CENTRE), f->ncells, g->uk, g->xb); /* eq. 4.61 */
-            g->phi[i] += uf * f->m->face_area[3 * i + k];
-        }
-    }
+    const double *U = g->U->v;
+    bc_update(&g->bc_U, U);
+    bc_values(&g->bc_U, U, g->xb);
+    /* one pass over the stencils and the face areas for all components;
+       walls and empty faces keep the zero flux phi was made with */
+    for (int i = 0; i < f->nfaces; i++)
+        if (!f->empty_face[i] && (i < f->ninternal || !g->wall[i - f->ninternal]))
+            g->phi[i] = face_flux(&g->ip->face, i, f->ncells, U, g->xb, f->m->face_area + 3 * i, g->flux_skip);
     g->t_flux += now() - t0;
 }
 
@@ -242,43 +291,52 @@ static int owner_pressure(const Granular *g, int b)
     return g->wall[b] || g->bc_rho.patch[g->f->face_patch[b]].kind == BC_ZERO_GRADIENT;
 }
 
-/* Face pressures p_f (newtonian.h) of p = RsT rho: the boundary pressures
-   first (from the owner's neighbourhood, fv/hydro.h, or RsT rho_b), then
-   every face's CENTRE row through hydro_face (a boundary face's row is
-   its boundary value; with wellBalanced each source reconstructed to the
-   face). */
-static void face_pressure(Granular *g)
+/* The pressures p = RsT rho of the cells into pc and of the boundary
+   faces into g->xbr (newtonian.h): from the owner's neighbourhood
+   (fv/hydro.h) at walls and zero-gradient faces, RsT rho_b elsewhere.
+   With them hydro_face gives every face's p_f through its CENTRE row (a
+   boundary face's row is its boundary value; with wellBalanced each
+   source reconstructed to the face). */
+static void pressures(Granular *g, double *pc)
 {
     const FvMesh *f = g->f;
     double R = g->pr.RsT;
-    for (int c = 0; c < f->ncells; c++) g->crho[c] = R * g->rho->v[c];
+    for (int c = 0; c < f->ncells; c++) pc[c] = R * g->rho->v[c];
     bc_values(&g->bc_rho, g->rho->v, g->xbr);
     for (int b = 0; b < f->nboundary; b++)
-        g->xbr[b] = owner_pressure(g, b) ? hydro_boundary(&g->hy, b, g->crho) : R * g->xbr[b];
-    for (int i = 0; i < f->nfaces; i++) g->pf[i] = f->empty_face[i] ? 0 : hydro_face(&g->hy, i, g->crho, g->xbr);
+        if (!f->empty_face[f->ninternal + b])
+            g->xbr[b] = owner_pressure(g, b) ? hydro_boundary(&g->hy, b, pc) : R * g->xbr[b];
 }
 
-/* The explicit parts: new density, momentum convection, pressure force. */
+/* The explicit parts: new density, the momentum terms V (rho u)^m / dt
+   minus its convection, pressure force (the arrays' lifetimes: top of
+   the file). */
 static void explicit_terms(Granular *g, double dt)
 {
     const FvMesh *f = g->f;
     const double *rho = g->rho->v, *U = g->U->v;
+    double *conv = g->force;
     bc_update(&g->bc_rho, rho);
     bc_states(&g->bc_rho, rho, g->xbr);
-    tvd_div(&g->tvd, &g->div_rho, g->phi, rho, g->xbr, 1, g->conv); /* eq. 4.60, or bounded second order */
+    tvd_div(&g->tvd, &g->div_rho, g->phi, rho, g->xbr, 1, conv); /* eq. 4.60, or bounded second order */
     mass_flow(g, rho, dt);
-    for (int c = 0; c < f->ncells; c++) g->rho1[c] = rho[c] - dt / f->m->cell_vol[c] * g->conv[c];
+    for (int c = 0; c < f->ncells; c++) g->rho1[c] = rho[c] - dt / f->m->cell_vol[c] * conv[c];
     bc_states(&g->bc_U, U, g->xb);
-    for (int b = 0; b < f->nboundary; b++)
-        for (int k = 0; k < 3; k++) g->xb3[3 * b + k] = g->xbr[b] * g->xb[3 * b + k];
+    for (int b = 0; b < f->nboundary; b++) /* the states of rho u */
+        if (!f->empty_face[f->ninternal + b])
+            for (int k = 0; k < 3; k++) g->xb[3 * b + k] *= g->xbr[b];
     for (int c = 0; c < f->ncells; c++)
-        for (int k = 0; k < 3; k++) g->rhoU[3 * c + k] = rho[c] * U[3 * c + k];
-    tvd_div(&g->tvd, &g->div_U, g->phi, g->rhoU, g->xb3, 3, g->conv);
-    face_pressure(g);
-    fvc_pressure_force(f, g->pf, g->force);
+        for (int k = 0; k < 3; k++) g->mom[3 * c + k] = rho[c] * U[3 * c + k];
+    tvd_div(&g->tvd, &g->div_U, g->phi, g->mom, g->xb, 3, conv);
+    for (int c = 0; c < f->ncells; c++) {
+        double V = f->m->cell_vol[c];
+        for (int k = 0; k < 3; k++) g->mom[3 * c + k] = V * g->mom[3 * c + k] / dt - conv[3 * c + k];
+    }
+    pressures(g, g->x);
+    hydro_force(&g->hy, g->x, g->xbr, g->force);
 }
 
-/* Assembles and solves component k (solver j) into U1.  The matrix is
+/* Assembles and solves component k (solver j) into mom's component k.  The matrix is
    the previous component's unless their boundary coefficients differ
    (slip walls): then only the right-hand side is assembled, and a shared
    solver keeps its preconditioner (linsolve_solve_tracked). */
@@ -297,9 +355,10 @@ static int solve_component(Granular *g, int j, double dt, Err *e)
     fvm_laplacian_rhs(&g->op, M, k, g->pr.mu);
     for (int c = 0; c < M->nrows; c++) {
         double V = f->m->cell_vol[c], rho = g->rho->v[c];
-        double F = g->gravity == GRAN_WELL_BALANCED ? g->pr.RsT * rho * g->hy.grav[3 * c + k] /* fv/hydro.h */
-                                                    : rho * g->pr.g[k] * V;
-        M->rhs[c] += V * g->rhoU[3 * c + k] / dt - g->conv[3 * c + k] - g->force[3 * c + k] + F;
+        double F = g->gravity == GRAN_CELL_SOURCE ? rho * g->pr.g[k] * V
+                   : g->hy.grav                   ? g->pr.RsT * rho * g->hy.grav[3 * c + k] /* fv/hydro.h */
+                                                  : 0;
+        M->rhs[c] += g->mom[3 * c + k] - g->force[3 * c + k] + F;
     }
     component(f, g->U->v, k, g->x);
     double t1 = now();
@@ -307,7 +366,7 @@ static int solve_component(Granular *g, int j, double dt, Err *e)
     int rc = linsolve_solve_tracked(g->L[j], g->x, &g->st[j], e);
     g->t_solve += now() - t1;
     if (rc) return -1;
-    for (int c = 0; c < f->ncells; c++) g->U1[3 * c + k] = g->x[c];
+    for (int c = 0; c < f->ncells; c++) g->mom[3 * c + k] = g->x[c];
     return 0;
 }
 
@@ -344,7 +403,7 @@ static void source_add(Granular *g, double dt)
 static int bad_cell(const Granular *g)
 {
     for (int c = 0; c < g->f->nowned; c++) {
-        const double *u = g->U1 + 3 * c;
+        const double *u = g->mom + 3 * c;
         if (!(g->rho1[c] > 0) || !isfinite(g->rho1[c]) || !isfinite(u[0] + u[1] + u[2])) return c;
     }
     return -1;
@@ -358,7 +417,6 @@ int gran_step(Granular *g, double dt, Err *e)
     explicit_terms(g, dt);
     if (g->src.fn) source_add(g, dt);
     g->t_explicit += now() - t0;
-    memcpy(g->U1, g->U->v, sizeof(double) * 3 * (size_t)f->ncells);
     for (int j = 0; j < g->naxes; j++)
         if (solve_component(g, j, dt, e)) {
             g->out_total = out0;
@@ -366,11 +424,13 @@ int gran_step(Granular *g, double dt, Err *e)
             return -1;
         }
     t0 = now();
+    if (f->empty_axis >= 0) /* not solved: keeps its value */
+        for (int c = 0; c < f->ncells; c++) g->mom[3 * c + f->empty_axis] = g->U->v[3 * c + f->empty_axis];
     int c = bad_cell(g);
     if (c >= 0) {
         g->out_total = out0;
         g->src_total = src0;
-        const double *x = f->node + 3 * c, *u = g->U1 + 3 * c;
+        const double *x = f->node + 3 * c, *u = g->mom + 3 * c;
         return err_set(e, NULL, 0,
                        "cell %d at (%g %g %g): %s: density %g, velocity (%g %g %g) (time step %g too large for "
                        "the flow, or bad boundary conditions)",
@@ -378,7 +438,7 @@ int gran_step(Granular *g, double dt, Err *e)
                        g->rho1[c], u[0], u[1], u[2], dt);
     }
     memcpy(g->rho->v, g->rho1, sizeof(double) * (size_t)f->ncells);
-    memcpy(g->U->v, g->U1, sizeof(double) * 3 * (size_t)f->ncells);
+    memcpy(g->U->v, g->mom, sizeof(double) * 3 * (size_t)f->ncells);
     g->time += dt;
     g->t_update += now() - t0;
     return 0;
@@ -387,12 +447,12 @@ int gran_step(Granular *g, double dt, Err *e)
 void gran_pressure(Granular *g, Field *p)
 {
     const FvMesh *f = g->f;
-    face_pressure(g);
-    for (int c = 0; c < f->ncells; c++) p->v[c] = g->crho[c];
+    pressures(g, p->v);
     for (int q = 0; q < p->npatches; q++) {
         PatchField *pf = &p->pf[q];
         if (!pf->value) continue;
         int start = f->m->patches[q].start;
-        for (int j = 0; j < pf->n; j++) pf->value[j] = g->pf[start + j];
+        for (int j = 0; j < pf->n; j++)
+            pf->value[j] = f->empty_face[start + j] ? 0 : hydro_face(&g->hy, start + j, p->v, g->xbr);
     }
 }

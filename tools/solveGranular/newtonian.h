@@ -52,6 +52,10 @@
 ** the centroid rule is second order on any cell (it integrates linear
 ** functions exactly), fv/quad.h's degree-2 rule third order (doc/theory.md).
 ** Without a hook (src.fn NULL, as gran_init leaves it) nothing changes.
+** solveGranular's main frees the set-up's geometry before the steps
+** (fvmesh_end_setup: face centres, cell face lists), which fv/quad.h
+** reads: a hook that integrates with it runs where that is kept (the
+** studies of tests/validation/mms), or takes its integrals before.
 */
 #ifndef KIESEL_NEWTONIAN_H
 #define KIESEL_NEWTONIAN_H
@@ -102,12 +106,19 @@ typedef struct Granular {
     LinSystem *L[3];
     LinStats st[3];        /* of the last step */
     char *wall;            /* nboundary: 1 on an impermeable face */
+    int flux_skip;         /* the velocity component the fluxes leave out:
+                              the empty axis of a 2-D grid whose faces'
+                              areas have no component along it, else -1 */
     double *phi;           /* nfaces: flux */
-    double *pf;            /* nfaces: face pressure */
-    double *rho1, *U1;     /* the new state */
-    double *rhoU, *conv, *force;   /* 3 ncells */
-    double *crho, *x, *uk; /* ncells */
-    double *xb, *xb3, *xbr;        /* boundary values */
+    double *rho1;          /* ncells: the new density */
+    double *mom;           /* 3 ncells: the explicit momentum terms
+                              V (rho u)^m / dt - div(phi rho u); component k
+                              becomes the new velocity once it is solved, so
+                              that after the solves this is u^{m+1} */
+    double *force;         /* 3 ncells: the pressure force (before that, the
+                              convection terms) */
+    double *x;             /* ncells: the solve's unknown; scratch before */
+    double *xb, *xbr;      /* boundary values: 3 and 1 per boundary face */
     double *patch_out;     /* npatches: mass flow out of each patch in the
                               last step, sum_f B(rho, phi) (eq. 4.60) */
     double out_total;      /* sum over the steps of dt x the net mass flow
