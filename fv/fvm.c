@@ -281,17 +281,31 @@ void fvm_laplacian(const Fvm *d, FvMatrix *M, int k, double gamma)
     fvm_laplacian_rhs(d, M, k, gamma);
 }
 
-void fvm_laplacian_matrix(const Fvm *d, FvMatrix *M, int k, double gamma)
+/* Gamma of face i: the array's where there is one, else the constant. */
+static inline double face_gamma(double gamma, const double *gamma_f, int i) { return gamma_f ? gamma_f[i] : gamma; }
+
+static void laplacian_matrix(const Fvm *d, FvMatrix *M, int k, double gamma, const double *gamma_f)
 {
     const FvMesh *f = d->f;
     for (int i = 0; i < f->nfaces; i++)
-        if (!f->empty_face[i]) face_terms(d, M, i, k, gamma, FVM_MATRIX);
+        if (!f->empty_face[i]) face_terms(d, M, i, k, face_gamma(gamma, gamma_f, i), FVM_MATRIX);
 }
 
-void fvm_laplacian_rhs(const Fvm *d, FvMatrix *M, int k, double gamma)
+static void laplacian_rhs(const Fvm *d, FvMatrix *M, int k, double gamma, const double *gamma_f)
 {
-    for (int j = 0; j < d->nrhs_face; j++) face_terms(d, M, d->rhs_face[j], k, gamma, FVM_RHS);
+    for (int j = 0; j < d->nrhs_face; j++) {
+        int i = d->rhs_face[j];
+        face_terms(d, M, i, k, face_gamma(gamma, gamma_f, i), FVM_RHS);
+    }
 }
+
+void fvm_laplacian_matrix(const Fvm *d, FvMatrix *M, int k, double gamma) { laplacian_matrix(d, M, k, gamma, NULL); }
+void fvm_laplacian_rhs(const Fvm *d, FvMatrix *M, int k, double gamma) { laplacian_rhs(d, M, k, gamma, NULL); }
+void fvm_laplacian_matrix_f(const Fvm *d, FvMatrix *M, int k, const double *gamma_f)
+{
+    laplacian_matrix(d, M, k, 0, gamma_f);
+}
+void fvm_laplacian_rhs_f(const Fvm *d, FvMatrix *M, int k, const double *gamma_f) { laplacian_rhs(d, M, k, 0, gamma_f); }
 
 int fvm_same_matrix(const Fvm *d, int k1, int k2)
 {
@@ -324,7 +338,7 @@ static double row_value(const Fvm *d, const double *u, int r, int k)
     return v;
 }
 
-void fvm_face_flux(const Fvm *d, const double *u, int k, double gamma, double *flux)
+static void face_flux(const Fvm *d, const double *u, int k, double gamma, const double *gamma_f, double *flux)
 {
     const FvMesh *f = d->f;
     const Bc *bc = d->bc;
@@ -332,7 +346,7 @@ void fvm_face_flux(const Fvm *d, const double *u, int k, double gamma, double *f
     for (int i = 0; i < f->nfaces; i++) {
         flux[i] = 0;
         if (f->empty_face[i]) continue;
-        double G = gamma * f->mag_sf[i];
+        double G = face_gamma(gamma, gamma_f, i) * f->mag_sf[i];
         int s = i >= f->ninternal ? bc_slot(bc, i - f->ninternal) : -1;
         if (s >= 0 && bc->fixed_grad[s]) {
             size_t bk = (size_t)s * (size_t)wd + (size_t)k;
@@ -342,6 +356,16 @@ void fvm_face_flux(const Fvm *d, const double *u, int k, double gamma, double *f
                       (row_value(d, u, interp_row(i, INTERP_PLUS), k) - row_value(d, u, interp_row(i, INTERP_MINUS), k));
         }
     }
+}
+
+void fvm_face_flux(const Fvm *d, const double *u, int k, double gamma, double *flux)
+{
+    face_flux(d, u, k, gamma, NULL, flux);
+}
+
+void fvm_face_flux_f(const Fvm *d, const double *u, int k, const double *gamma_f, double *flux)
+{
+    face_flux(d, u, k, 0, gamma_f, flux);
 }
 
 void fvm_ddt(FvMatrix *M, const FvMesh *f, const double *c, double dt)

@@ -96,11 +96,18 @@ void fvm_laplacian_rhs(const Fvm *d, FvMatrix *M, int k, double gamma);
 /* Do components k1 and k2 of bc's field have the same matrix entries
    (the same a and ga on every boundary face)? */
 int fvm_same_matrix(const Fvm *d, int k1, int k2);
+/* The same three with a coefficient per face, gamma_f[i] for face i
+   (nfaces numbers; a variable viscosity or conductivity: the granular
+   model's eta_f and lambda_f of eq. 4.61's face rule).  With every
+   gamma_f[i] = gamma they are the constant forms to the bit. */
+void fvm_laplacian_matrix_f(const Fvm *d, FvMatrix *M, int k, const double *gamma_f);
+void fvm_laplacian_rhs_f(const Fvm *d, FvMatrix *M, int k, const double *gamma_f);
 
 /* The face fluxes F_f = Gamma |S_f| du/dn (out of the owner) of component
    k of the cell values u (ncells * width, interleaved) with their
    boundary values from bc (as the assembly takes them): flux[nfaces]. */
 void fvm_face_flux(const Fvm *d, const double *u, int k, double gamma, double *flux);
+void fvm_face_flux_f(const Fvm *d, const double *u, int k, const double *gamma_f, double *flux);
 
 /* Adds V c[C] / dt to the diagonal (the unknown's coefficient of the
    time derivative; c the new density, eq. 4.66 [OURS], doc/theory.md). */

@@ -10,8 +10,24 @@
 **       RsT  6;                    // p = RsT rho [J kg^-1] (eq. 5.1: 6)
 **   }
 **
-** The granular model of thesis ch. 2 (eq. 2.37-2.47) joins `model` in the
-** next issue; until then the word is refused with the valid choices.
+**   model granular;                // the granular model of thesis ch. 2
+**   granularCoeffs                 // (eq. 2.37-2.47, fv/closure.h)
+**   {
+**       eta0     0.00102573;       // eq. 2.21 [m]
+**       lambda0  0.00034;          // eq. 2.22 [m]
+**       epsilon0 216.649;          // eq. 2.23 [1/m], or instead:
+**       // grainDiameter 1e-3; restitution 0.9;   (eq. 2.24)
+**       cMax     0.8;              // c_max of g(c) = 1/(1 - c/c_max)
+**       c0       0.3;              // onset of the yield terms
+**       T0       0;                // yield temperature [m^2/s^2]
+**       KT       0.666667;         // heating and conduction factor (2/3;
+**                                  // 1.5 the thesis's displayed equations)
+**       freezeT  no;               // yes: T stays as read (§5.2.1)
+**       deltaC   1e-6;             // limits: c <= cMax - deltaC,
+**       Tmin     1e-12;            //         T >= Tmin,
+**       cMin     1e-8;             //         c floored to cMin in the
+**   }                              //         matrices (safe velocity)
+**
 ** constant/g is optional (no file: no gravity); it must have the
 ** dimensions of an acceleration.
 */
@@ -19,20 +35,25 @@
 #define KIESEL_PROPS_H
 
 #include "dict.h"
+#include "closure.h"
 #include "err.h"
 
-enum { MODEL_NEWTONIAN };
+enum { MODEL_NEWTONIAN, MODEL_GRANULAR };
 
 typedef struct GranularProps {
     int model;         /* MODEL_* */
     double mu;         /* Newtonian: dynamic viscosity */
     double RsT;        /* Newtonian: p = RsT rho */
+    GranCoeffs k;      /* granular: the closures' coefficients */
+    int freezeT;       /* granular: T not solved */
+    double dc, Tmin, cmin;   /* granular: the limits (deltaC, Tmin, cMin) */
     double g[3];       /* gravity, 0 without constant/g */
 } GranularProps;
 
 /* Keywords, for -help. */
 extern const DictKey props_keys[];
 extern const DictKey props_newtonian_keys[];
+extern const DictKey props_granular_keys[];
 extern const char *const props_models[];
 
 /* Reads <case>/constant/granularProperties and <case>/constant/g. */

@@ -1,8 +1,10 @@
 /*
 ** solveGranular: continuum granular flow on cut-cell and Voronoi grids
-** (ICCM, thesis ch. 4).  Model Newtonian: the compressible Navier-Stokes
-** equations of eq. 5.1 by the semi-implicit Euler of eq. 4.66
-** (newtonian.h).  See doc/tools/solveGranular.md.
+** (ICCM, thesis ch. 4), by the semi-implicit Euler of eq. 4.66.  Model
+** Newtonian: the compressible Navier-Stokes equations of eq. 5.1
+** (newtonian.h; fields rho, U).  Model granular: volume fraction,
+** momentum and granular temperature, eq. 2.37-2.47 (granular.h; fields
+** alpha, U, Theta).  See doc/tools/solveGranular.md.
 **
 ** Reads like OpenFOAM's scalarTransportFoam: the case, the properties,
 ** the schemes and solvers, the grid, the fields at the start time, then
@@ -29,18 +31,22 @@ static const ArgDict dicts[] = {
     {"system/controlDict", runtime_control_keys, "adjustTimeStep and maxCo: the speed is |u.n| + sqrt(RsT) (explicit pressure); set maxCo 0.25"},
     {"constant/granularProperties", props_keys, "constant/g (optional, no file: no gravity): dimensions [0 1 -2 0 0 0 0]; value (gx gy gz);"},
     {"constant/granularProperties: NewtonianCoeffs", props_newtonian_keys, NULL},
+    {"constant/granularProperties: granularCoeffs", props_granular_keys,
+     "fields: alpha (volume fraction c), U, Theta (granular temperature T [m^2/s^2]); p is written"},
     {"system/fvSchemes: divSchemes", gran_div_keys, NULL},
     {"system/fvSchemes: gravitySchemes", gran_gravity_keys, NULL},
     {"system/fvSchemes: interpolationSchemes", interp_keys, NULL},
     {"system/fvSchemes: interpolationSchemes.shepardCoeffs", interp_shepard_keys, NULL},
-    {"system/fvSolution: solvers.Ux, Uy, Uz", linsolve_keys, NULL},
+    {"system/fvSolution: solvers.Ux, Uy, Uz (model granular: and Theta)", linsolve_keys, NULL},
     {0}};
 
 static const ArgOpt opts[] = {
     {"-profile", NULL, "at the end, print where the steps' time went (flux, explicit terms, assembly, linear solves)"},
     {0}};
 
-static const ToolInfo tool = {"solveGranular", "continuum granular flow (ICCM, eq. 4.66): model Newtonian (eq. 5.1)",
+static const ToolInfo tool = {"solveGranular",
+                              "continuum granular flow (ICCM, eq. 4.66): model Newtonian (eq. 5.1) | granular "
+                              "(eq. 2.37-2.47, dense to dilute)",
                               opts, dicts, 0};
 
 static volatile sig_atomic_t stop_signal;
@@ -76,7 +82,7 @@ static void print_warnings(const Field *f)
 typedef struct Run {
     Case cs;
     Mesh m;
-    Field rho, U, p;
+    Field rho, U, T, p;   /* rho is alpha in model granular; T (Theta) only there */
     Granular g;
     TimeLoop tl;
     double written;    /* the last time on disk */
@@ -97,20 +103,35 @@ static void write_time(Run *r, double t)
     char name[64];
     Buf log;
     buf_init(&log);
-    Field *f[3] = {&r->rho, &r->U, &r->p};
+    int gr = r->g.model == MODEL_GRANULAR;
+    Field *f[4] = {&r->rho, &r->U, gr ? &r->T : &r->p, &r->p};
     gran_pressure(&r->g, &r->p);
-    report_vtk(state_write(&r->cs, &r->m, f, 3, t, r->tl.index, r->tl.dt, r->tl.dt0, name, &log, &e), &log, &e);
+    report_vtk(state_write(&r->cs, &r->m, f, gr ? 4 : 3, t, r->tl.index, r->tl.dt, r->tl.dt0, name, &log, &e), &log,
+               &e);
     r->written = t;
+}
+
+static void log_solve(const LinSettings *s, const LinStats *st)
+{
+    printf("%s%s:  Solving for %s, Initial residual = %g, Final residual = %g, No Iterations %d\n",
+           strcmp(s->precon, "none") ? s->precon : "", s->solver, s->name, st->initial, st->final, st->iters);
+}
+
+/* Model granular: the Theta solve and the limits that acted (granular.h). */
+static void log_granular(const Granular *g)
+{
+    const GranModel *m = &g->gm;
+    if (m->solved) log_solve(&m->set, &m->st);
+    const GranLimits *l = &m->last, *t = &m->total;
+    if (l->cmax || l->tmin || l->cmin || t->cmax || t->tmin || t->cmin)
+        printf("Limits: c <= cMax - deltaC %ld (%ld in all), T >= Tmin %ld (%ld), c floored to cMin %ld (%ld)\n",
+               l->cmax, t->cmax, l->tmin, t->tmin, l->cmin, t->cmin);
 }
 
 static void log_step(const Args *a, Run *r, double mass0)
 {
-    for (int j = 0; j < r->g.naxes; j++) {
-        const LinSettings *s = &r->g.set[j];
-        const LinStats *st = &r->g.st[j];
-        printf("%s%s:  Solving for %s, Initial residual = %g, Final residual = %g, No Iterations %d\n",
-               strcmp(s->precon, "none") ? s->precon : "", s->solver, s->name, st->initial, st->final, st->iters);
-    }
+    for (int j = 0; j < r->g.naxes; j++) log_solve(&r->g.set[j], &r->g.st[j]);
+    if (r->g.model == MODEL_GRANULAR) log_granular(&r->g);
     double mass = gran_mass(&r->g);
     printf("Total mass = %.15g, change since start = %.3e (relative)\n", mass, (mass - mass0) / mass0);
     const char *sep = "Mass flow out:";
@@ -142,6 +163,18 @@ static void print_profile(const Run *r, long steps)
     printf("\n");
 }
 
+/* Model granular's coefficients, K_T among them, at the top of every log. */
+static void print_model(const GranularProps *pr)
+{
+    const GranCoeffs *k = &pr->k;
+    printf("Model granular: eta0 %g, lambda0 %g, epsilon0 %g, cMax %g, c0 %g, T0 %g\n", k->eta0, k->lambda0, k->eps0,
+           k->cmax, k->c0, k->T0);
+    printf("  K_T = %.6g (factor on viscous heating and conduction; 2/3 kinetic theory, 1.5 the thesis's displayed "
+           "equations)%s\n",
+           k->KT, pr->freezeT ? "; T frozen (freezeT yes)" : "");
+    printf("  limits: c <= %g, T >= %g, c floored to %g in the matrices\n\n", k->cmax - pr->dc, pr->Tmin, pr->cmin);
+}
+
 static void read_case(Run *r, const Args *a, Interp *ip, FvMesh *fm, Start *st)
 {
     Err e;
@@ -155,12 +188,16 @@ static void read_case(Run *r, const Args *a, Interp *ip, FvMesh *fm, Start *st)
         err_die(&e);
     char *mpath = case_path(&r->cs, "constant/polyMesh");
     if (mesh_read(&r->m, mpath, &e) || fvmesh_init(fm, &r->m, &e) || interp_init(ip, fm, &io, mpath, &e)) err_die(&e);
-    if (state_read_field(&r->rho, &r->m, &r->cs, st->name, "rho", 1, &e) ||
-        state_read_field(&r->U, &r->m, &r->cs, st->name, "U", 3, &e))
+    int gr = pr.model == MODEL_GRANULAR;
+    if (state_read_field(&r->rho, &r->m, &r->cs, st->name, gr ? "alpha" : "rho", 1, &e) ||
+        state_read_field(&r->U, &r->m, &r->cs, st->name, "U", 3, &e) ||
+        (gr && state_read_field(&r->T, &r->m, &r->cs, st->name, "Theta", 1, &e)))
         err_die(&e);
     print_warnings(&r->rho);
     print_warnings(&r->U);
-    if (gran_init(&r->g, fm, ip, &pr, &sch, &r->rho, &r->U, sol, &e)) err_die(&e);
+    if (gr) print_warnings(&r->T);
+    if (gran_init(&r->g, fm, ip, &pr, &sch, &r->rho, &r->U, gr ? &r->T : NULL, sol, &e)) err_die(&e);
+    if (gr) print_model(&pr);
     fvmesh_end_setup(fm); /* the set-up's geometry, never read by the steps */
     r->g.time = st->value;
     double zero = 0;
@@ -235,6 +272,7 @@ int main(int argc, char **argv)
     fvmesh_free(&fm);
     field_free(&r.p);
     field_free(&r.U);
+    if (r.T.v) field_free(&r.T);
     field_free(&r.rho);
     mesh_free(&r.m);
     case_free(&r.cs);

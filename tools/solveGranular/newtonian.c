@@ -48,53 +48,73 @@ const DictKey gran_div_keys[] = {
      "(bounded second order, doc/theory.md) | none (then both below are required)"},
     {"div(phi,rho)", "default", "convection in the continuity equation"},
     {"div(phi,U)", "default", "convection of momentum rho u"},
+    {"div(phi,Theta)", "default", "model granular: convection of c T"},
     {NULL, NULL, NULL}};
 
 const char *const gran_gravity_names[] = {"wellBalanced", "cellSource", NULL};
 
 const DictKey gran_gravity_keys[] = {
-    {"default", "wellBalanced",
+    {"default", "wellBalanced (model granular: cellSource)",
      "pressure force and gravity: wellBalanced (each cell's hydrostatic profile p = RsT rho exp(g.(x - x_C)/RsT) "
      "carried to the faces: a column at rest stays at rest to round-off on every grid) | cellSource (the "
-     "plain face pressure and rho_C g V_C: no rest state on cut and Voronoi grids); the same when g = 0"},
+     "plain face pressure and rho_C g V_C: no rest state on cut and Voronoi grids); the same when g = 0; model "
+     "granular takes cellSource only (its pressure has no isothermal profile)"},
     {NULL, NULL, NULL}};
 
-static int read_div(const Dict *fvschemes, TvdScheme div[2], Err *e)
+static int read_div(const Dict *fvschemes, TvdScheme div[3], Err *e)
 {
-    static const char *const keys[2] = {"div(phi,rho)", "div(phi,U)"};
+    static const char *const keys[3] = {"div(phi,rho)", "div(phi,U)", "div(phi,Theta)"};
     TvdScheme def = {TVD_UPWIND, 1};
-    div[0] = div[1] = def;
+    div[0] = div[1] = div[2] = def;
     const Dict *d = dict_subdict_opt(fvschemes, "divSchemes");
     if (!d) return 0;
     if (dict_check_keys(d, gran_div_keys, e)) return -1;
     const DictEntry *en = dict_find(d, "default");
     int none = en && !en->dict && en->nvals == 1 && en->vals[0]->kind == DN_WORD && !strcmp(en->vals[0]->text, "none");
     if (en && !none && tvd_parse(en, &def, e)) return -1;
-    for (int j = 0; j < 2; j++) {
+    for (int j = 0; j < 3; j++) {
         en = dict_find(d, keys[j]);
         div[j] = def;
         if (en && tvd_parse(en, &div[j], e)) return -1;
-        if (!en && none)
+        if (!en && none && j < 2) /* div(phi,Theta) only matters to model granular: checked there */
             return err_set(e, d->file, d->line, "divSchemes: %s missing (default is none)", keys[j]);
     }
     return 0;
 }
 
-static int read_gravity(const Dict *fvschemes, int *scheme, Err *e)
+static int read_gravity(const Dict *fvschemes, GranSchemes *sch, Err *e)
 {
-    *scheme = GRAN_WELL_BALANCED;
+    sch->gravity = GRAN_WELL_BALANCED;
+    sch->gravity_given = 0;
+    sch->gravity_file = fvschemes->file;
+    sch->gravity_line = fvschemes->line;
     const Dict *d = dict_subdict_opt(fvschemes, "gravitySchemes");
     if (!d) return 0;
     if (dict_check_keys(d, gran_gravity_keys, e)) return -1;
-    return dict_choice_or(d, "default", gran_gravity_names, GRAN_WELL_BALANCED, scheme, e);
+    const DictEntry *en = dict_find(d, "default");
+    if (en) sch->gravity_given = 1, sch->gravity_file = en->file, sch->gravity_line = en->line;
+    return dict_choice_or(d, "default", gran_gravity_names, GRAN_WELL_BALANCED, &sch->gravity, e);
 }
 
 int gran_read_schemes(const Dict *fvschemes, GranSchemes *sch, Err *e)
 {
-    return read_div(fvschemes, sch->div, e) || read_gravity(fvschemes, &sch->gravity, e) ? -1 : 0;
+    sch->div[2].kind = TVD_UPWIND;
+    return read_div(fvschemes, sch->div, e) || read_gravity(fvschemes, sch, e) ? -1 : 0;
 }
 
-/* Impermeable boundary faces of U: noSlip, movingWall, slip, symmetryPlane. */
+/* Model granular's gravity: the cell source (granular.h). */
+static int granular_gravity(const GranSchemes *sch, int *scheme, Err *e)
+{
+    if (sch->gravity_given && sch->gravity == GRAN_WELL_BALANCED)
+        return err_set(e, sch->gravity_file, sch->gravity_line,
+                       "gravitySchemes wellBalanced needs the isothermal pressure p = RsT rho of model Newtonian; "
+                       "model granular takes cellSource");
+    *scheme = GRAN_CELL_SOURCE;
+    return 0;
+}
+
+/* Impermeable boundary faces of U: noSlip, movingWall, slip, symmetryPlane
+   (granular.c's wall velocities follow the same list). */
 static void mark_walls(Granular *g)
 {
     const FvMesh *f = g->f;
@@ -154,27 +174,36 @@ static int init_solvers(Granular *g, const Dict *fvsolution, Err *e)
 }
 
 int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, const GranSchemes *sch,
-              Field *rho, Field *U, const Dict *fvsolution, Err *e)
+              Field *rho, Field *U, Field *T, const Dict *fvsolution, Err *e)
 {
     memset(g, 0, sizeof *g);
+    g->model = pr->model;
     g->f = f;
     g->div_rho = sch->div[0];
     g->div_U = sch->div[1];
-    tvd_init(&g->tvd, f, sch->div[0].kind == TVD_UPWIND && sch->div[1].kind == TVD_UPWIND ? 0 : 3);
+    g->div_T = sch->div[2];
+    int upwind = sch->div[0].kind == TVD_UPWIND && sch->div[1].kind == TVD_UPWIND &&
+                 (g->model != MODEL_GRANULAR || sch->div[2].kind == TVD_UPWIND);
+    tvd_init(&g->tvd, f, upwind ? 0 : 3);
     g->ip = ip;
     g->pr = *pr;
     g->gravity = sch->gravity;
+    if (g->model == MODEL_GRANULAR && granular_gravity(sch, &g->gravity, e)) return -1;
     static const double none[3] = {0, 0, 0};
-    hydro_init(&g->hy, f, ip, g->gravity == GRAN_WELL_BALANCED ? pr->g : none, pr->RsT);
+    /* model granular: g = 0 in the weights (cell source); its RsT is unused, 1 keeps g.x/RsT defined */
+    hydro_init(&g->hy, f, ip, g->gravity == GRAN_WELL_BALANCED ? pr->g : none, g->model == MODEL_GRANULAR ? 1 : pr->RsT);
     g->rho = rho;
     g->U = U;
     if (bc_init(&g->bc_rho, rho, f, e)) return -1;
     if (bc_init(&g->bc_U, U, f, e)) return -1;
-    if (bc_check_open(&g->bc_rho, &g->bc_U, rho, U, sqrt(pr->RsT), e)) return -1;
+    /* the isothermal model's open-boundary rule (bc_open.c); the granular
+       inflow fixes c and u both, as the thesis's (spec §1.4) */
+    if (g->model != MODEL_GRANULAR && bc_check_open(&g->bc_rho, &g->bc_U, rho, U, sqrt(pr->RsT), e)) return -1;
     mark_walls(g);
     alloc_work(g);
     g->flux_skip = flux_skip(f);
-    return linsolve_init(e) || init_solvers(g, fvsolution, e) ? -1 : 0;
+    if (linsolve_init(e) || init_solvers(g, fvsolution, e)) return -1;
+    return g->model == MODEL_GRANULAR ? granmodel_init(g, T, fvsolution, e) : 0;
 }
 
 void gran_free(Granular *g)
@@ -189,6 +218,7 @@ void gran_free(Granular *g)
     if (g->bc_rho.fm) bc_free(&g->bc_rho);
     tvd_free(&g->tvd);
     if (g->hy.f) hydro_free(&g->hy);
+    granmodel_free(&g->gm);
     void *arr[] = {g->wall, g->phi, g->rho1, g->mom, g->force, g->x, g->xb, g->xbr, g->patch_out};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
     free(g->src_rho);
@@ -276,7 +306,13 @@ void gran_flux(Granular *g)
 double gran_courant(Granular *g, double dt, double *mean)
 {
     const FvMesh *f = g->f;
-    double co = fvc_courant_uniform(f, g->phi, sqrt(g->pr.RsT), dt, g->x), sum = 0;
+    double co, sum = 0;
+    if (g->model == MODEL_GRANULAR) {
+        granmodel_closures(g);
+        co = fvc_courant(f, g->phi, g->gm.speed_f, dt, g->x);
+    } else {
+        co = fvc_courant_uniform(f, g->phi, sqrt(g->pr.RsT), dt, g->x);
+    }
     for (int c = 0; c < f->nowned; c++) sum += g->x[c];
     *mean = f->nowned ? sum / f->nowned : 0;
     return co;
@@ -301,11 +337,17 @@ static void pressures(Granular *g, double *pc)
 {
     const FvMesh *f = g->f;
     double R = g->pr.RsT;
-    for (int c = 0; c < f->ncells; c++) pc[c] = R * g->rho->v[c];
+    int gr = g->model == MODEL_GRANULAR;
+    if (gr) /* p(c, T) of granmodel_closures */
+        memcpy(pc, g->gm.pc, sizeof(double) * (size_t)f->ncells);
+    else
+        for (int c = 0; c < f->ncells; c++) pc[c] = R * g->rho->v[c];
     bc_values(&g->bc_rho, g->rho->v, g->xbr);
     for (int b = 0; b < f->nboundary; b++)
         if (!f->empty_face[f->ninternal + b])
-            g->xbr[b] = owner_pressure(g, b) ? hydro_boundary(&g->hy, b, pc) : R * g->xbr[b];
+            g->xbr[b] = owner_pressure(g, b) ? hydro_boundary(&g->hy, b, pc)
+                        : gr                 ? granmodel_boundary_pressure(g, b)
+                                             : R * g->xbr[b];
 }
 
 /* The explicit parts: new density, the momentum terms V (rho u)^m / dt
@@ -346,13 +388,20 @@ static int solve_component(Granular *g, int j, double dt, Err *e)
     int k = g->axis[j];
     FvMatrix *M = &g->M;
     double t0 = now();
+    int gr = g->model == MODEL_GRANULAR;
     if (j == 0 || !fvm_same_matrix(&g->op, g->axis[j - 1], k)) {
         fvmatrix_zero_values(M);
-        fvm_ddt(M, f, g->rho1, dt);
-        fvm_laplacian_matrix(&g->op, M, k, g->pr.mu); /* eq. 4.62-4.64 */
+        fvm_ddt(M, f, gr ? g->gm.cfl : g->rho1, dt); /* granular: c floored (granular.h) */
+        if (gr) /* eq. 4.62-4.64 with eta_f */
+            fvm_laplacian_matrix_f(&g->op, M, k, g->gm.eta_f);
+        else
+            fvm_laplacian_matrix(&g->op, M, k, g->pr.mu);
     }
     fvmatrix_zero_rhs(M);
-    fvm_laplacian_rhs(&g->op, M, k, g->pr.mu);
+    if (gr)
+        fvm_laplacian_rhs_f(&g->op, M, k, g->gm.eta_f);
+    else
+        fvm_laplacian_rhs(&g->op, M, k, g->pr.mu);
     for (int c = 0; c < M->nrows; c++) {
         double V = f->m->cell_vol[c], rho = g->rho->v[c];
         double F = g->gravity == GRAN_CELL_SOURCE ? rho * g->pr.g[k] * V
@@ -402,9 +451,11 @@ static void source_add(Granular *g, double dt)
    positive, or -1. */
 static int bad_cell(const Granular *g)
 {
+    int gr = g->model == MODEL_GRANULAR; /* c = 0 is an empty cell, T1 is checked by granular.c */
     for (int c = 0; c < g->f->nowned; c++) {
         const double *u = g->mom + 3 * c;
-        if (!(g->rho1[c] > 0) || !isfinite(g->rho1[c]) || !isfinite(u[0] + u[1] + u[2])) return c;
+        if (!(gr ? g->rho1[c] >= 0 : g->rho1[c] > 0) || !isfinite(g->rho1[c]) || !isfinite(u[0] + u[1] + u[2]))
+            return c;
     }
     return -1;
 }
@@ -414,8 +465,10 @@ int gran_step(Granular *g, double dt, Err *e)
     const FvMesh *f = g->f;
     double out0 = g->out_total, src0 = g->src_total, t0 = now();
     if (g->src.fn && source_eval(g, e)) return -1;
+    if (g->model == MODEL_GRANULAR) granmodel_closures(g); /* at c^m, T^m */
     explicit_terms(g, dt);
     if (g->src.fn) source_add(g, dt);
+    if (g->model == MODEL_GRANULAR) granmodel_limit_c(g);
     g->t_explicit += now() - t0;
     for (int j = 0; j < g->naxes; j++)
         if (solve_component(g, j, dt, e)) {
@@ -423,6 +476,11 @@ int gran_step(Granular *g, double dt, Err *e)
             g->src_total = src0;
             return -1;
         }
+    if (g->model == MODEL_GRANULAR && granmodel_temperature(g, dt, e)) {
+        g->out_total = out0;
+        g->src_total = src0;
+        return -1;
+    }
     t0 = now();
     if (f->empty_axis >= 0) /* not solved: keeps its value */
         for (int c = 0; c < f->ncells; c++) g->mom[3 * c + f->empty_axis] = g->U->v[3 * c + f->empty_axis];
@@ -434,11 +492,12 @@ int gran_step(Granular *g, double dt, Err *e)
         return err_set(e, NULL, 0,
                        "cell %d at (%g %g %g): %s: density %g, velocity (%g %g %g) (time step %g too large for "
                        "the flow, or bad boundary conditions)",
-                       c, x[0], x[1], x[2], isfinite(g->rho1[c]) && isfinite(u[0] + u[1] + u[2]) ? "density <= 0" : "not a number",
+                       c, x[0], x[1], x[2], isfinite(g->rho1[c]) && isfinite(u[0] + u[1] + u[2]) ? (g->model == MODEL_GRANULAR ? "volume fraction < 0" : "density <= 0") : "not a number",
                        g->rho1[c], u[0], u[1], u[2], dt);
     }
     memcpy(g->rho->v, g->rho1, sizeof(double) * (size_t)f->ncells);
     memcpy(g->U->v, g->mom, sizeof(double) * 3 * (size_t)f->ncells);
+    if (g->model == MODEL_GRANULAR) granmodel_commit(g);
     g->time += dt;
     g->t_update += now() - t0;
     return 0;
@@ -447,6 +506,7 @@ int gran_step(Granular *g, double dt, Err *e)
 void gran_pressure(Granular *g, Field *p)
 {
     const FvMesh *f = g->f;
+    if (g->model == MODEL_GRANULAR) granmodel_closures(g);
     pressures(g, p->v);
     for (int q = 0; q < p->npatches; q++) {
         PatchField *pf = &p->pf[q];

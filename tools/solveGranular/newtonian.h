@@ -64,6 +64,7 @@
 #include "dict.h"
 #include "field.h"
 #include "fvm.h"
+#include "granular.h"
 #include "hydro.h"
 #include "interp.h"
 #include "linsolve.h"
@@ -74,8 +75,12 @@ enum { GRAN_WELL_BALANCED, GRAN_CELL_SOURCE };
 
 /* The schemes of fvSchemes the model reads. */
 typedef struct GranSchemes {
-    TvdScheme div[2];      /* divSchemes' div(phi,rho) and div(phi,U) */
+    TvdScheme div[3];      /* divSchemes' div(phi,rho), div(phi,U) and
+                              div(phi,Theta) (model granular: of c T) */
     int gravity;           /* gravitySchemes: GRAN_WELL_BALANCED, ... */
+    int gravity_given;     /* gravitySchemes' default was in the file */
+    const char *gravity_file;   /* where (messages) */
+    int gravity_line;
 } GranSchemes;
 
 /* A source hook: fn fills, for each of the f->ncells cells c, rho_src[c]
@@ -89,12 +94,13 @@ typedef struct GranSource {
 } GranSource;
 
 typedef struct Granular {
+    int model;             /* MODEL_NEWTONIAN or MODEL_GRANULAR (props.h) */
     const FvMesh *f;
     const Interp *ip;
     GranularProps pr;
     Field *rho, *U;        /* the state (the caller's fields, updated in place) */
     Bc bc_rho, bc_U;
-    TvdScheme div_rho, div_U;   /* divSchemes' div(phi,rho) and div(phi,U) */
+    TvdScheme div_rho, div_U, div_T;   /* divSchemes' div(phi,rho), div(phi,U), div(phi,Theta) */
     Tvd tvd;               /* their grid data (nothing when both are upwind) */
     int gravity;           /* GRAN_WELL_BALANCED or GRAN_CELL_SOURCE */
     Hydro hy;              /* the face pressure weights and gravity vectors
@@ -132,6 +138,8 @@ typedef struct Granular {
     double src_total;      /* sum over the steps of dt x the integrated
                               continuity source: mass - mass(start) =
                               src_total - out_total to round-off */
+    GranModel gm;          /* model granular's part (granular.h); zero for
+                              model Newtonian */
     double t_flux, t_explicit, t_assembly, t_solve, t_update;   /* seconds
                               spent in each part of the steps (GranProfile) */
 } Granular;
@@ -152,15 +160,18 @@ int gran_read_schemes(const Dict *fvschemes, GranSchemes *sch, Err *e);
 /* Sets up the model on f with the interpolation ip and the schemes sch
    (gran_read_schemes): the boundary conditions of rho and U, the face
    pressure weights, the matrix, the solvers of Ux, Uy (, Uz) from
-   fvSolution. */
+   fvSolution.  Model granular (pr->model): rho is the volume fraction
+   alpha and T the granular temperature Theta (granular.h); model
+   Newtonian: T is NULL. */
 int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, const GranSchemes *sch,
-              Field *rho, Field *U, const Dict *fvsolution, Err *e);
+              Field *rho, Field *U, Field *T, const Dict *fvsolution, Err *e);
 void gran_free(Granular *g);
 
 /* The face fluxes phi of the current velocity. */
 void gran_flux(Granular *g);
 /* Courant number of the fluxes for step dt with the sound speed
-   sqrt(RsT) (pressure is explicit): the largest, and the mean into *mean. */
+   (pressure is explicit): sqrt(RsT), or model granular's sqrt(dp/dc) of
+   the faces' cells; the largest, and the mean into *mean. */
 double gran_courant(Granular *g, double dt, double *mean);
 /* One step of eq. 4.66 over dt from the fluxes of gran_flux. */
 int gran_step(Granular *g, double dt, Err *e);
@@ -168,8 +179,9 @@ int gran_step(Granular *g, double dt, Err *e);
 int gran_open_patch(const Granular *g, int q);
 /* Total mass sum rho V. */
 double gran_mass(const Granular *g);
-/* The derived pressure p = RsT rho (cells and, as calculated values, the
-   boundary faces) into p, a field made with field_init. */
+/* The derived pressure p = RsT rho, or model granular's p(c, T) (cells
+   and, as calculated values, the boundary faces) into p, a field made
+   with field_init. */
 void gran_pressure(Granular *g, Field *p);
 
 #endif

@@ -177,7 +177,7 @@ void mms_case_init(MmsCase *k, const Study *s, int N)
     GranularProps pr = {MODEL_NEWTONIAN, s->mu, s->RsT, {0, 0, 0}};
     GranSchemes sch = {{div_scheme(s->div), div_scheme(s->div)}, GRAN_WELL_BALANCED};
     k->sol = dict_parse(FVSOLUTION, strlen(FVSOLUTION), "fvSolution", &e);
-    if (!k->sol || gran_init(&k->g, &k->f, &k->ip, &pr, &sch, &k->rho, &k->U, k->sol, &e)) die("gran_init", &e);
+    if (!k->sol || gran_init(&k->g, &k->f, &k->ip, &pr, &sch, &k->rho, &k->U, NULL, k->sol, &e)) die("gran_init", &e);
     k->g.src = (GranSource){source_steady, &k->src};
 }
 

@@ -1,0 +1,294 @@
+/*
+** granular.c: model granular's closures, face viscosities, viscous heating
+** and temperature equation (granular.h).
+**
+** Lifetimes: granmodel_closures evaluates everything at the state (c^m,
+** T^m) once per step (gran_courant calls it; gran_step again only when the
+** state changed since, m->fresh); the momentum solves read eta_f, the
+** temperature step lam_f, eps_c, eta_c; granmodel_commit marks the state
+** changed.  The temperature step computes into T1 and changes no field,
+** so a failed step loses nothing (newtonian.c commits).
+*/
+#include "newtonian.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mem.h"
+
+/* The unknowns' field names, for messages. */
+#define C_NAME "alpha"
+#define T_NAME "Theta"
+
+static int check_initial(const Granular *g, Err *e)
+{
+    const FvMesh *f = g->f;
+    const GranularProps *pr = &g->pr;
+    const double *c = g->rho->v, *T = g->gm.T->v;
+    for (int i = 0; i < f->nowned; i++) {
+        const double *x = f->node + 3 * i;
+        if (!(c[i] >= 0 && c[i] <= pr->k.cmax - pr->dc))
+            return err_set(e, NULL, 0,
+                           C_NAME " = %g in cell %d at (%g %g %g): the volume fraction must lie in [0, cMax - deltaC] = "
+                           "[0, %g]",
+                           c[i], i, x[0], x[1], x[2], pr->k.cmax - pr->dc);
+        if (!(T[i] > 0 && isfinite(T[i])))
+            return err_set(e, NULL, 0,
+                           T_NAME " = %g in cell %d at (%g %g %g): the granular temperature must be positive "
+                           "(Tmin %g is the floor the steps keep)",
+                           T[i], i, x[0], x[1], x[2], pr->Tmin);
+    }
+    return 0;
+}
+
+static void alloc_model(Granular *g)
+{
+    GranModel *m = &g->gm;
+    size_t nc = (size_t)g->f->ncells + 1, nf = (size_t)g->f->nfaces + 1, nb = (size_t)g->f->nboundary + 1;
+    double **cell[] = {&m->eta_c, &m->lam_c, &m->eps_c, &m->pc, &m->cfl, &m->T1, &m->heat, &m->area, &m->uk};
+    for (size_t i = 0; i < sizeof cell / sizeof cell[0]; i++) *cell[i] = mem_calloc(nc, sizeof(double));
+    double **face[] = {&m->eta_f, &m->lam_f, &m->speed_f};
+    for (size_t i = 0; i < sizeof face / sizeof face[0]; i++) *face[i] = mem_calloc(nf, sizeof(double));
+    double **bnd[] = {&m->cb, &m->Tb, &m->etab, &m->lamb, &m->tb};
+    for (size_t i = 0; i < sizeof bnd / sizeof bnd[0]; i++) *bnd[i] = mem_calloc(nb, sizeof(double));
+    m->ub = mem_calloc(3 * nb, sizeof(double));
+    m->jac = mem_calloc(9 * nc, sizeof(double));
+}
+
+/* Sum of |S_f| over each cell's faces that are not empty (eq. 4.65). */
+static void face_areas(const FvMesh *f, double *area)
+{
+    for (int i = 0; i < f->nfaces; i++) {
+        if (f->empty_face[i]) continue;
+        area[f->m->owner[i]] += f->mag_sf[i];
+        if (i < f->ninternal) area[f->m->neighbour[i]] += f->mag_sf[i];
+    }
+}
+
+static int init_solver(Granular *g, const Dict *fvsolution, Err *e)
+{
+    GranModel *m = &g->gm;
+    FvPattern pat;
+    fvpattern_init(&pat, g->f);
+    fvm_pattern(&pat, g->f, g->ip);
+    fvmatrix_init(&m->M, &pat);
+    if (fvm_init(&m->op, &m->M, g->f, g->ip, &m->bc_T, e) || linsolve_settings(&m->set, fvsolution, T_NAME, e))
+        return -1;
+    m->L = linsolve_new(&m->set, &m->M, e);
+    return m->L ? 0 : -1;
+}
+
+int granmodel_init(Granular *g, Field *T, const Dict *fvsolution, Err *e)
+{
+    GranModel *m = &g->gm;
+    m->T = T;
+    if (bc_init(&m->bc_T, T, g->f, e)) return -1;
+    alloc_model(g);
+    face_areas(g->f, m->area);
+    if (check_initial(g, e)) return -1;
+    m->solved = !g->pr.freezeT;
+    return m->solved ? init_solver(g, fvsolution, e) : 0;
+}
+
+void granmodel_free(GranModel *m)
+{
+    if (m->L) linsolve_free(m->L);
+    if (m->set.name) linsolve_settings_free(&m->set);
+    if (m->op.dist) fvm_free(&m->op);
+    if (m->M.off) fvmatrix_free(&m->M);
+    if (m->bc_T.fm) bc_free(&m->bc_T);
+    void *arr[] = {m->eta_c, m->lam_c, m->eps_c, m->pc, m->cfl, m->T1, m->heat, m->area, m->uk, m->eta_f, m->lam_f,
+                   m->speed_f, m->cb, m->Tb, m->etab, m->lamb, m->tb, m->ub, m->jac};
+    for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
+    memset(m, 0, sizeof *m);
+}
+
+/* Face values by eq. 4.61's rule through each face's CENTRE row: the mean
+   of the two cells between whole Cartesian cells, the interpolation near
+   cut cells, the boundary value at boundary faces; never negative (a
+   multilinear row with reflected sources may undershoot). */
+static void face_values(const Granular *g, const double *xc, const double *xb, double *xf)
+{
+    const FvMesh *f = g->f;
+    for (int i = 0; i < f->nfaces; i++)
+        xf[i] = f->empty_face[i] ? 0 : fmax(0, stencil_apply(&g->ip->face, interp_row(i, INTERP_CENTRE), f->ncells, xc, xb));
+}
+
+void granmodel_closures(Granular *g)
+{
+    GranModel *m = &g->gm;
+    if (m->fresh) return;
+    const FvMesh *f = g->f;
+    const GranCoeffs *k = &g->pr.k;
+    const double *c = g->rho->v, *T = m->T->v;
+    double *speed = m->jac; /* scratch until the heating */
+    for (int i = 0; i < f->ncells; i++) {
+        GranClosure cl;
+        closure_eval(k, c[i], T[i], &cl);
+        m->eta_c[i] = cl.eta, m->lam_c[i] = k->KT * cl.lambda, m->eps_c[i] = cl.eps, m->pc[i] = cl.p;
+        speed[i] = sqrt(fmax(cl.dpdc, 0));
+    }
+    bc_values(&g->bc_rho, c, m->cb);
+    bc_update(&m->bc_T, T);
+    bc_values(&m->bc_T, T, m->Tb);
+    for (int b = 0; b < f->nboundary; b++) {
+        if (f->empty_face[f->ninternal + b]) continue;
+        GranClosure cl;
+        closure_eval(k, fmin(fmax(m->cb[b], 0), k->cmax - g->pr.dc), fmax(m->Tb[b], g->pr.Tmin), &cl);
+        m->etab[b] = cl.eta, m->lamb[b] = k->KT * cl.lambda;
+    }
+    face_values(g, m->eta_c, m->etab, m->eta_f);
+    face_values(g, m->lam_c, m->lamb, m->lam_f);
+    for (int i = 0; i < f->nfaces; i++) {
+        double s = speed[f->m->owner[i]];
+        m->speed_f[i] = i < f->ninternal ? fmax(s, speed[f->m->neighbour[i]]) : s;
+    }
+    m->fresh = 1;
+}
+
+double granmodel_boundary_pressure(const Granular *g, int b)
+{
+    const GranModel *m = &g->gm;
+    return closure_pressure(&g->pr.k, fmin(fmax(m->cb[b], 0), g->pr.k.cmax - g->pr.dc), fmax(m->Tb[b], g->pr.Tmin));
+}
+
+void granmodel_limit_c(Granular *g)
+{
+    GranModel *m = &g->gm;
+    const GranularProps *pr = &g->pr;
+    double top = pr->k.cmax - pr->dc;
+    memset(&m->last, 0, sizeof m->last);
+    for (int i = 0; i < g->f->ncells; i++) {
+        double *c = &g->rho1[i];
+        if (*c > top) *c = top, m->last.cmax += i < g->f->nowned;
+        if (*c < pr->cmin) m->last.cmin += i < g->f->nowned;
+        m->cfl[i] = fmax(*c, pr->cmin);
+    }
+}
+
+/* U's boundary values with the wall velocity u_S at impermeable walls:
+   slip walls are at rest (u_S = 0), the others' values are their wall
+   velocities already (granular.h: the heating sees the whole gradient). */
+static void wall_values(Granular *g)
+{
+    const FvMesh *f = g->f;
+    double *ub = g->gm.ub;
+    bc_values(&g->bc_U, g->U->v, ub);
+    for (int b = 0; b < f->nboundary; b++) {
+        if (f->empty_face[f->ninternal + b] || !g->wall[b]) continue;
+        BcKind kind = g->bc_U.patch[f->face_patch[b]].kind;
+        if (kind == BC_SLIP) ub[3 * b] = ub[3 * b + 1] = ub[3 * b + 2] = 0;
+    }
+}
+
+/* The outward normal derivative of eq. 4.62 at face i of the cell values
+   uc and the boundary values ubk (one component, stride 1); a Neumann face
+   (zeroGradient) its given gradient. */
+static double normal_derivative(const Granular *g, int i, int k, const double *uc, const double *ubk)
+{
+    const FvMesh *f = g->f;
+    const Stencil *s = &g->ip->face;
+    if (g->op.kind[i] == FVM_NEUMANN) {
+        const Bc *bc = &g->bc_U;
+        size_t bk = (size_t)bc_slot(bc, i - f->ninternal) * 3 + (size_t)k;
+        double d = bc->gb[bk];
+        if (bc->ga[bk] != 0) d += bc->ga[bk] * stencil_apply(s, interp_row(i, INTERP_MINUS), f->ncells, uc, ubk);
+        return d;
+    }
+    double plus = stencil_apply(s, interp_row(i, INTERP_PLUS), f->ncells, uc, ubk);
+    return (plus - stencil_apply(s, interp_row(i, INTERP_MINUS), f->ncells, uc, ubk)) / g->op.dist[i];
+}
+
+/* heat[c] = K_T eta_C sum_ij (J_C)_ij^2 with the face-based Jacobian of
+   eq. 4.65 (granular.h) of u^m. */
+static void heating(Granular *g)
+{
+    GranModel *m = &g->gm;
+    const FvMesh *f = g->f;
+    int alpha = f->empty_axis >= 0 ? 2 : 3;
+    memset(m->jac, 0, sizeof(double) * 9 * (size_t)f->ncells);
+    wall_values(g);
+    for (int k = 0; k < 3; k++) {
+        if (k == f->empty_axis) continue;
+        for (int c = 0; c < f->ncells; c++) m->uk[c] = g->U->v[3 * c + k];
+        for (int b = 0; b < f->nboundary; b++) m->tb[b] = m->ub[3 * b + k];
+        for (int i = 0; i < f->nfaces; i++) {
+            if (f->empty_face[i]) continue;
+            double d = normal_derivative(g, i, k, m->uk, m->tb);
+            const double *S = f->m->face_area + 3 * i;
+            int o = f->m->owner[i];
+            /* (du/dn)(n_j) A: the same for both cells (granular.h) */
+            for (int j = 0; j < 3; j++) m->jac[9 * o + 3 * k + j] += d * S[j];
+            if (i < f->ninternal)
+                for (int j = 0; j < 3; j++) m->jac[9 * f->m->neighbour[i] + 3 * k + j] += d * S[j];
+        }
+    }
+    for (int c = 0; c < f->ncells; c++) {
+        double w = alpha / m->area[c], sum = 0;
+        for (int q = 0; q < 9; q++) sum += (w * m->jac[9 * c + q]) * (w * m->jac[9 * c + q]);
+        m->heat[c] = g->pr.k.KT * m->eta_c[c] * sum;
+    }
+}
+
+/* The convection of c T (eq. 4.60: the upwind state, or the scheme of
+   div(phi,Theta)) into g->force's first ncells; c T^m into m->uk. */
+static void convect_cT(Granular *g)
+{
+    GranModel *m = &g->gm;
+    const FvMesh *f = g->f;
+    const double *c = g->rho->v, *T = m->T->v;
+    for (int i = 0; i < f->ncells; i++) m->uk[i] = c[i] * T[i];
+    bc_states(&g->bc_rho, c, m->cb);
+    bc_states(&m->bc_T, T, m->tb);
+    for (int b = 0; b < f->nboundary; b++) m->tb[b] *= m->cb[b]; /* inflow with fixed c: c_F T_C */
+    tvd_div(&g->tvd, &g->div_T, g->phi, m->uk, m->tb, 1, g->force);
+    bc_values(&g->bc_rho, c, m->cb); /* back to the values granmodel_boundary_pressure reads */
+}
+
+/* V c^{m+1}/dt + eps^m c^{m+1} V - div(K_T lambda_f grad) on the matrix,
+   V (cT)^m/dt - div(phi cT) + heat V on the right-hand side. */
+static void assemble_T(Granular *g, double dt)
+{
+    GranModel *m = &g->gm;
+    const FvMesh *f = g->f;
+    FvMatrix *M = &m->M;
+    fvmatrix_zero(M);
+    fvm_ddt(M, f, m->cfl, dt);
+    for (int r = 0; r < M->nrows; r++) M->val[M->diag[r]] += m->eps_c[r] * m->cfl[r] * f->m->cell_vol[r];
+    fvm_laplacian_matrix_f(&m->op, M, 0, m->lam_f);
+    fvm_laplacian_rhs_f(&m->op, M, 0, m->lam_f);
+    for (int r = 0; r < M->nrows; r++) {
+        double V = f->m->cell_vol[r];
+        M->rhs[r] += V * m->uk[r] / dt - g->force[r] + m->heat[r] * V;
+    }
+}
+
+int granmodel_temperature(Granular *g, double dt, Err *e)
+{
+    GranModel *m = &g->gm;
+    const FvMesh *f = g->f;
+    memcpy(m->T1, m->T->v, sizeof(double) * (size_t)f->ncells);
+    if (!m->solved) return 0;
+    heating(g);
+    convect_cT(g);
+    assemble_T(g, dt);
+    if (linsolve_solve_tracked(m->L, m->T1, &m->st, e)) return -1;
+    for (int i = 0; i < f->ncells; i++) {
+        if (!isfinite(m->T1[i])) {
+            const double *x = f->node + 3 * i;
+            return err_set(e, NULL, 0, "cell %d at (%g %g %g): " T_NAME " not a number (time step %g too large?)", i,
+                           x[0], x[1], x[2], dt);
+        }
+        if (m->T1[i] < g->pr.Tmin) m->T1[i] = g->pr.Tmin, m->last.tmin += i < f->nowned;
+    }
+    return 0;
+}
+
+void granmodel_commit(Granular *g)
+{
+    GranModel *m = &g->gm;
+    memcpy(m->T->v, m->T1, sizeof(double) * (size_t)g->f->ncells);
+    m->total.cmax += m->last.cmax, m->total.tmin += m->last.tmin, m->total.cmin += m->last.cmin;
+    m->fresh = 0;
+}

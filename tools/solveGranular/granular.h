@@ -1,0 +1,110 @@
+/*
+** granular.h: what solveGranular's model granular adds to the shared
+** compressible core of newtonian.h: the closures, the face viscosities and
+** the granular temperature (thesis ch. 2 and eq. 4.66; spec
+** granular-model.md §1 and §4).
+**
+** The unknowns are c (the field alpha), cu (U holds u) and cT (Theta holds
+** T).  The core advances c and u as it advances rho and u in model
+** Newtonian, with three differences that this module supplies:
+**   pressure   p = p_k + p_y of fv/closure.h, not RsT rho;
+**   viscosity  -div(eta grad u_i) with the face viscosity eta_f of eq.
+**              4.61's face rule (spec correction 4): the mean of the two
+**              cells between whole Cartesian cells, the interpolated cell
+**              field (the face's CENTRE row) near cut cells, the boundary
+**              value eta(c_b, T_b) at boundary faces;
+**   gravity    F = c g (the cell source; the well-balanced profile of
+**              fv/hydro.h is the isothermal p = RsT rho's and is refused).
+** and, after the momentum solves, the temperature equation (eq. 4.66),
+**   V (c^{m+1} T^{m+1} - (cT)^m) / dt + sum_f B((cT)^m, phi)
+**       - sum_f K_T lambda_f |S_f| dT^{m+1}/dn + eps^m c^{m+1} T^{m+1} V
+**       = K_T eta_C sum_ij (J^m_C)_ij^2 V,
+** with T^{m+1} the unknown (the thesis's (cT)^{m+1}/c to O(dt), as the
+** momentum's), implicit conduction and dissipation, explicit heating.
+** J_C is the face-based Jacobian of §4.4 (eq. 4.57, 4.58, 4.65):
+**   (J_C)_ij = alpha sum_f (du_i/dn_f) (n_f)_j A_f / sum_f A_f
+** over the cell's faces that are not empty (alpha = 2 or 3), du/dn_f the
+** face's normal derivative of eq. 4.62 from its PLUS and MINUS rows, with
+** the wall velocity u_S at impermeable walls (slip and partialSlip walls
+** included: "gradients at slip walls are completely included", spec
+** §1.4).  The product (du/dn_f)(n_f)_j does not depend on the normal's
+** orientation (spec correction 5), so each face adds the same term to its
+** two cells.  The boundary condition of T is zeroGradient at walls (spec
+** §1.4); at an inflow with fixed c the advected state is c_F T_C.
+**
+** Limits (props.h: deltaC, Tmin, cMin), each counted per step and in all:
+** c^{m+1} <= cMax - deltaC and T^{m+1} >= Tmin after each step, and c
+** floored to cMin in the matrices' time-derivative and dissipation terms,
+** so that an empty cell (c = 0 is kept by the upwind scheme) still gets a
+** velocity and a temperature: the safe velocity of a vacuum.  A clamp of c
+** changes the mass; the log reports the mass and the counts.
+*/
+#ifndef KIESEL_GRANULAR_H
+#define KIESEL_GRANULAR_H
+
+#include "bc.h"
+#include "closure.h"
+#include "field.h"
+#include "fvm.h"
+#include "linsolve.h"
+
+struct Granular;
+
+typedef struct GranLimits {
+    long cmax, tmin, cmin;   /* cells limited: c clamped to cMax - deltaC,
+                                T raised to Tmin, c floored to cMin */
+} GranLimits;
+
+typedef struct GranModel {
+    Field *T;              /* Theta: the granular temperature T */
+    Bc bc_T;
+    double *eta_c, *lam_c, *eps_c;   /* ncells: eta, K_T lambda, eps at c^m, T^m */
+    double *eta_f, *lam_f; /* nfaces: eta_f and K_T lambda_f (eq. 4.61's face rule) */
+    double *speed_f;       /* nfaces: the signal speed sqrt(dp/dc) (Courant) */
+    double *cb, *Tb;       /* nboundary: boundary values of c and T */
+    double *etab, *lamb;   /* nboundary: eta and K_T lambda there */
+    double *tb;            /* nboundary: scratch (a component, a state) */
+    double *uk;            /* ncells: scratch (a component, c T^m) */
+    double *pc;            /* ncells: the cell pressures p(c, T) */
+    double *cfl;           /* ncells: c^{m+1} floored to cMin (the matrices) */
+    double *T1;            /* ncells: the new temperature */
+    double *heat;          /* ncells: K_T eta_C sum (J_C)_ij^2 (per volume) */
+    double *area;          /* ncells: sum of |S_f| over non-empty faces */
+    double *jac;           /* 9 ncells: the Jacobian's sums (scratch) */
+    double *ub;            /* 3 nboundary: U's boundary values with u_S at walls */
+    FvMatrix M;
+    Fvm op;
+    LinSettings set;
+    LinSystem *L;
+    LinStats st;
+    int solved;            /* the temperature equation is solved (not frozen) */
+    int fresh;             /* the closures are those of the current state */
+    GranLimits last, total;
+} GranModel;
+
+/* Sets up the model's part on g (after the core's boundary conditions and
+   matrix pattern exist): T's boundary conditions and checks, the arrays,
+   the matrix and the solver of Theta from fvSolution (skipped with
+   freezeT).  The initial c must lie in [0, cMax - deltaC] and T be
+   positive and finite: else an error naming the field and the cell. */
+int granmodel_init(struct Granular *g, Field *T, const Dict *fvsolution, Err *e);
+void granmodel_free(GranModel *m);
+
+/* The closures at the current state: cell values, boundary values, face
+   viscosities, signal speeds and the cell pressures (into m->pc). */
+void granmodel_closures(struct Granular *g);
+/* The pressure of boundary face b that is not taken from the owner's
+   neighbourhood: p(c_b, T_b) (after granmodel_closures). */
+double granmodel_boundary_pressure(const struct Granular *g, int b);
+/* After the explicit update of c (the core's rho1): c^{m+1} clamped to
+   cMax - deltaC, and its copy floored to cMin for the matrices (m->cfl). */
+void granmodel_limit_c(struct Granular *g);
+/* The temperature step (after the momentum solves, before the state is
+   committed): the new temperature into m->T1, Tmin applied; frozen T:
+   T1 is T.  Fails (changing nothing) when the solve fails or T1 is not
+   finite. */
+int granmodel_temperature(struct Granular *g, double dt, Err *e);
+/* The commit: T1 into the field. */
+void granmodel_commit(struct Granular *g);
+
+#endif
