@@ -12,6 +12,12 @@
 #     an RK4 solution of dT/dt = -eps(c, T) T written here (4e5 steps), the
 #     same orders (measured 0.991, 0.994, 0.996), error at 0.005 <= 7e-4
 #     (measured 6.19e-4);
+#   - viscous heating (eq. 4.65): plane shear u = (gamma y, 0) on an 8 x 8
+#     block grid (noSlip floor, movingWall lid at gamma, zeroGradient
+#     sides), no conduction and no dissipation (lambda0 = epsilon0 = 0),
+#     one step of 1e-6: T^1 - T^0 = dt K_T eta gamma^2 / c in every cell to
+#     1e-9 relative (the face-based Jacobian is exact for a linear field on
+#     whole cells, wall cells included), for K_T = 2/3 and 1.5;
 #   - rest: the closed box rotated 30 degrees to the grid, cut and merged,
 #     and as a Voronoi grid, c = 0.4 uniform with yield (c0 0.3), T = 0.01,
 #     no gravity: max |U| <= 1e-12 after 400 steps (measured 3.7e-21 and
@@ -117,6 +123,31 @@ ref=$(awk 'function f(T) { return -g * (T * sqrt(T) + (c - c0) / c * sqrt(T)) }
 echo "  cooling_yield: T(1) by RK4 = $ref"
 cooling_study cooling_yield "$K" 0.55 "$ref" 7e-4
 grep -q 'K_T = 0.666667' cooling_yield_0.01/log && pass granular_log_KT || fail granular_log_KT "K_T not in the log"
+
+# ---- viscous heating of a plane shear ----
+for kt in 0.666666666666666667 1.5; do
+    c=shear_$kt
+    mkdir -p $c && grid $c 8 8 1 1 && "$BIN/blockGrid" -case $c >$c/log.blockGrid 2>&1
+    gcase $c 'endTime 1e-6; deltaT 1e-6; writeControl timeStep; writeInterval 1; writeFormat ascii; writePrecision 17;' \
+        "eta0 0.01; lambda0 0; epsilon0 0; cMax 0.64; c0 0.5; T0 0; KT $kt;" 0.3 1 noSlip
+    /usr/bin/python3 - $c/0/U <<'EOF'
+import sys
+gamma, n = 2.0, 8
+cells = ' '.join('(%.17g 0 0)' % (gamma * (j + 0.5) / n) for j in range(n) for i in range(n))
+t = open(sys.argv[1]).read().replace('internalField uniform (0 0 0);', 'internalField nonuniform List<vector> %d (%s);' % (n * n, cells))
+t = t.replace('boundaryField {', 'boundaryField { inlet { type zeroGradient; } outlet { type zeroGradient; } '
+              'walls { type movingWall; value uniform (2 0 0); } floor { type noSlip; }')
+open(sys.argv[1], 'w').write(t)
+EOF
+    sed -i 's/yMin { name walls; type wall; }/yMin { name floor; type wall; }/' $c/system/blockGridDict
+    "$BIN/blockGrid" -case $c >$c/log.blockGrid 2>&1
+    "$BIN/solveGranular" -case $c >$c/log 2>&1; rc=$?
+    want=$(awk -v kt=$kt 'BEGIN { c = 0.3; g = 1 / (1 - c / 0.64); eta = 0.01 * c * g; printf "%.17g", 1 + 1e-6 * kt * eta * 4 / c }')
+    d=$(maxdev $c 1e-06 Theta "$want")
+    rl=$(awk -v d=$d -v w=$want 'BEGIN { printf "%.3e", d / (w - 1) }')
+    if [ $rc -eq 0 ] && le "$rl" 1e-9; then pass granular_heating_KT$kt "T^1 - T^0 within $rl of dt K_T eta gamma^2 / c"
+    else fail granular_heating_KT$kt "rc $rc, relative error $rl; $(tail -n 2 $c/log)"; fi
+done
 
 # ---- rest: cut and merged, and Voronoi ----
 for kind in cut voronoi; do
