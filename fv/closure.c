@@ -38,9 +38,10 @@
 ** a2 = 16 (1-e)(1-2e^2)/(81 - 17e + 30e^2(1-e))); units 1/m (spec
 ** correction 6).
 **
-** Homogeneous cooling [OURS: the thesis gives no solution].  With uniform c and u = 0 the temperature equation
-** (eq. 2.39) is c dT/dt = -eps c T.  Write a = eps0 g, b = Y/c, s = sqrt T:
-** then ds/dt = -(a/2)(s^2 + b).  With b = 0: s = s0/(1 + s0 a t/2).  With
+** Homogeneous cooling [OURS: the thesis gives no solution].  With
+** uniform c and u = 0 the temperature equation (eq. 2.39) is
+** c dT/dt = -eps c T.  Write a = eps0 g, b = Y/c, s = sqrt T: then
+** ds/dt = -(a/2)(s^2 + b).  With b = 0: s = s0/(1 + s0 a t/2).  With
 ** b > 0, q = tan(a sqrt(b) t/2)/sqrt(b):
 **
 **   s = (s0 - b q)/(1 + s0 q)       (-> the b = 0 form as b -> 0)
