@@ -6,7 +6,11 @@
 ** periodic inclined channel of thesis §5.1.3 (cut, and cut and merged);
 ** and every refusal with the field file and the line of the patch entry;
 ** the open boundaries an isothermal model may take (bc_check_open: one of
-** rho and U fixed, both at a supersonic inflow), in 2-D and 3-D.
+** rho and U fixed, both at a supersonic inflow), in 2-D and 3-D; the
+** walls of bc_wall.c: partialSlip's Coulomb friction (eq. 2.35: its limits
+** slip's and noSlip's to the bit, sticking and sliding by hand, rotation
+** invariance in 3-D, the assembly on a cut disc) and rotatingWallVelocity
+** (by hand, and on a cut disc: no normal part), with their refusals.
 */
 #include "bc.h"
 #include "cut.h"
