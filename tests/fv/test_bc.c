@@ -783,7 +783,8 @@ TEST(partial_slip_limits)
                bc_slip_count(&bc[2], NULL), nf);
         EXPECT(bc_slip_count(&bc[1], &nf) == 0 && nf == 0, "slip has %d partialSlip faces", nf);
         /* the values: slip's and noSlip's */
-        double *x0 = mem_alloc(sizeof(double) * 3 * (size_t)fm.nboundary), *x1 = mem_alloc(sizeof(double) * 3 * (size_t)fm.nboundary);
+        size_t nx = sizeof(double) * 3 * (size_t)fm.nboundary;
+        double *x0 = mem_alloc(nx), *x1 = mem_alloc(nx);
         bc_values(&bc[0], v, x0);
         bc_values(&bc[1], v, x1);
         int b = bface(&fm, "top", 0);
@@ -1229,17 +1230,18 @@ TEST(errors_walls)
     REFUSED(width == 1 ? "T" : "U", width, 9, text,                                                       \
             width == 1 ? "inlet { type fixedValue; value uniform 1; }"                                     \
                        : "inlet { type fixedValue; value uniform (1 0 0); }",                              \
-            "outlet { type zeroGradient; }", width == 1 ? "bottom { type zeroGradient; }" : "bottom { type noSlip; }", \
+            "outlet { type zeroGradient; }",                                                               \
+            width == 1 ? "bottom { type zeroGradient; }" : "bottom { type noSlip; }",                          \
             top, "frontAndBack { type empty; }")
     WALL_REFUSED(3, "top { type partialSlip; }",
-                 "patch 'top' of field 'U': type partialSlip needs a frictionAngle entry (the wall friction angle phi in "
-                 "degrees, 0 <= phi <= 90: 0 is slip, 90 no-slip)");
+                 "patch 'top' of field 'U': type partialSlip needs a frictionAngle entry (the wall friction angle "
+                 "phi in degrees, 0 <= phi <= 90: 0 is slip, 90 no-slip)");
     WALL_REFUSED(3, "top { type partialSlip; valueFraction uniform 0.5; }",
-                 "patch 'top' of field 'U': type partialSlip needs a frictionAngle entry (the wall friction angle phi in "
-                 "degrees, 0 <= phi <= 90: 0 is slip, 90 no-slip); OpenFOAM's valueFraction is not read");
+                 "patch 'top' of field 'U': type partialSlip needs a frictionAngle entry (the wall friction angle "
+                 "phi in degrees, 0 <= phi <= 90: 0 is slip, 90 no-slip); OpenFOAM's valueFraction is not read");
     WALL_REFUSED(3, "top { type partialSlip; frictionAngle 100; }",
-                 "patch 'top' of field 'U': frictionAngle 100 is out of range: the wall friction angle is 0 <= phi <= 90 "
-                 "degrees");
+                 "patch 'top' of field 'U': frictionAngle 100 is out of range: the wall friction angle is "
+                 "0 <= phi <= 90 degrees");
     WALL_REFUSED(3, "top { type partialSlip; frictionAngle -1; }",
                  "patch 'top' of field 'U': frictionAngle -1 is out of range");
     WALL_REFUSED(3, "top { type partialSlip; frictionAngle thirty; }",
