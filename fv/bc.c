@@ -6,8 +6,17 @@
 ** counts, constraint types on both sides), each patch's type against the
 ** field's width, and the cyclic pairs against the geometry.  Then the
 ** coefficients that never change are written once (fixed values,
-** Neumann faces, slip's diagonal, cyclic weights) and bc_update writes
-** the explicit parts that follow the field.
+** Neumann faces, slip's diagonal, cyclic weights, a rotating wall's
+** velocities) and bc_update writes the parts that follow the field: the
+** explicit ones, and all of partialSlip's, whose nu (bc_wall.c, eq. 2.35)
+** follows the flow and the wall state.  partialSlip is slip's split with
+** nu in it: nu = 1 gives slip's numbers and nu = 0 movingWall's, to the
+** bit, so fvm_same_matrix (fv/fvm.c) sees one matrix for all components
+** wherever every partialSlip face sticks.
+**
+** The entries of partialSlip and rotatingWallVelocity other than type and
+** value are the Field's extras (PatchField.extra, kept as text), so their
+** refusals name the line of the patch's entry, as every refusal here.
 **
 ** Cyclic pairing follows OpenFOAM: face i of a cyclic patch couples to
 ** face i of its neighbourPatch.  Nothing but order pairs them, so the
@@ -27,8 +36,12 @@
 #include "geom.h"
 #include "mem.h"
 
-static const char *const kind_names[BC_NKINDS] = {"fixedValue", "zeroGradient",  "noSlip", "movingWall", "slip",
-                                                  "symmetryPlane", "cyclic", "empty", "calculated"};
+static const char *const kind_names[BC_NKINDS] = {"fixedValue",  "zeroGradient",        "noSlip",
+                                                  "movingWall",  "slip",                "symmetryPlane",
+                                                  "cyclic",      "empty",               "calculated",
+                                                  "partialSlip", "rotatingWallVelocity"};
+
+static const double PI = 3.14159265358979323846;
 
 const char *bc_kind_name(BcKind k) { return k >= 0 && k < BC_NKINDS ? kind_names[k] : "?"; }
 
@@ -104,9 +117,118 @@ static int check_constraint(const Ctx *c, int p, int kind, Err *e)
     return 0;
 }
 
+/* The wall normal of boundary face b: the geometry's exact one where the
+   grid has it (a unit vector), else the face's. */
+static void wall_normal(const FvMesh *fm, int b, double *n)
+{
+    const double *bn = fm->m->boundary_normal ? fm->m->boundary_normal + 3 * b : NULL;
+    if (bn && fabs(geom_norm(bn) - 1) < 1e-6)
+        memcpy(n, bn, 3 * sizeof *n);
+    else
+        memcpy(n, fm->nf + 3 * (fm->ninternal + b), 3 * sizeof *n);
+}
+
 /* ---- pass 2: each type against the field ---- */
 
-static int vector_only(int kind) { return kind == BC_NO_SLIP || kind == BC_MOVING_WALL; }
+static int vector_only(int kind)
+{
+    return kind == BC_NO_SLIP || kind == BC_MOVING_WALL || kind == BC_PARTIAL_SLIP || kind == BC_ROTATING_WALL;
+}
+
+/* Patch p's entry key other than type and value, or NULL. */
+static const DictEntry *extra_entry(const Ctx *c, int p, const char *key)
+{
+    const Dict *x = c->f->pf[p].extra;
+    return x ? dict_find(x, key) : NULL;
+}
+
+/* One finite number (function1: also OpenFOAM's `constant w`): 0, or -1
+   when en is not one. */
+static int entry_number(const DictEntry *en, int function1, double *out)
+{
+    const DictNode *nd = !en->dict && en->nvals == 1 ? en->vals[0] : NULL;
+    if (function1 && !en->dict && en->nvals == 2 && en->vals[0]->kind == DN_WORD &&
+        !strcmp(en->vals[0]->text, "constant"))
+        nd = en->vals[1];
+    if (!nd || nd->kind != DN_NUMBER || !isfinite(nd->num)) return -1;
+    *out = nd->num;
+    return 0;
+}
+
+/* Entry key of patch p as a finite vector (x y z): 1 absent, 0 read, -1
+   not a vector. */
+static int extra_vector(const Ctx *c, int p, const char *key, double out[3])
+{
+    if (!extra_entry(c, p, key)) return 1;
+    Err scratch; /* its file:line would be the copy's: the caller names the entry's */
+    if (dict_vector(c->f->pf[p].extra, key, out, &scratch)) return -1;
+    return isfinite(out[0]) && isfinite(out[1]) && isfinite(out[2]) ? 0 : -1;
+}
+
+/* partialSlip's frictionAngle (required, 0..90 degrees) and wall velocity
+   (wallVelocity, else the value entry, else 0). */
+static int parse_partial_slip(const Ctx *c, int p, BcPatch *bp, Err *e)
+{
+    const char *name = c->m->patches[p].name, *fld = c->f->name;
+    const DictEntry *en = extra_entry(c, p, "frictionAngle");
+    if (!en)
+        return PATCH_ERR(c, p,
+                         "patch '%s' of field '%s': type partialSlip needs a frictionAngle entry (the wall friction "
+                         "angle phi in degrees, 0 <= phi <= 90: 0 is slip, 90 no-slip)%s",
+                         name, fld, extra_entry(c, p, "valueFraction") ? "; OpenFOAM's valueFraction is not read" : "");
+    if (entry_number(en, 0, &bp->phi))
+        return PATCH_ERR(c, p, "patch '%s' of field '%s': frictionAngle must be a number (degrees)", name, fld);
+    if (!(bp->phi >= 0 && bp->phi <= 90))
+        return PATCH_ERR(c, p,
+                         "patch '%s' of field '%s': frictionAngle %g is out of range: the wall friction angle is "
+                         "0 <= phi <= 90 degrees (0 slip, 90 no-slip)",
+                         name, fld, bp->phi);
+    bp->tan_phi = bp->phi == 90 ? INFINITY : tan(bp->phi * PI / 180);
+    size_t n = (size_t)bp->size * 3;
+    bp->us = MEM_NEW(double, n);
+    double u[3];
+    int rc = extra_vector(c, p, "wallVelocity", u);
+    if (rc < 0)
+        return PATCH_ERR(c, p, "patch '%s' of field '%s': wallVelocity must be a vector (ux uy uz)", name, fld);
+    if (rc == 0)
+        for (int i = 0; i < bp->size; i++) memcpy(bp->us + 3 * i, u, sizeof u);
+    else if (c->f->pf[p].value)
+        memcpy(bp->us, c->f->pf[p].value, n * sizeof *bp->us);
+    return 0;
+}
+
+/* rotatingWallVelocity's origin, axis and omega (all required), and the
+   face velocities they give (bc_rotating_velocity, without the normal
+   component). */
+static int parse_rotating(const Ctx *c, int p, BcPatch *bp, Err *e)
+{
+    const char *name = c->m->patches[p].name, *fld = c->f->name;
+    double o[3], ax[3], w;
+    const char *keys[2] = {"origin", "axis"};
+    double *vec[2] = {o, ax};
+    for (int j = 0; j < 2; j++) {
+        int rc = extra_vector(c, p, keys[j], vec[j]);
+        if (rc)
+            return PATCH_ERR(c, p, "patch '%s' of field '%s': type rotatingWallVelocity needs %s (x y z)%s", name,
+                             fld, keys[j], rc > 0 ? "" : ", a vector of three numbers");
+    }
+    if (geom_norm(ax) == 0)
+        return PATCH_ERR(c, p, "patch '%s' of field '%s': rotatingWallVelocity's axis is (0 0 0)", name, fld);
+    const DictEntry *en = extra_entry(c, p, "omega");
+    if (!en || entry_number(en, 1, &w))
+        return PATCH_ERR(c, p,
+                         "patch '%s' of field '%s': type rotatingWallVelocity needs omega, the angular velocity in "
+                         "rad/s (a number, or constant <number>)",
+                         name, fld);
+    bp->value = MEM_NEW(double, (size_t)bp->size * 3);
+    for (int i = 0; i < bp->size; i++) {
+        int f = bp->start + i;
+        double n[3];
+        wall_normal(c->fm, f - c->fm->ninternal, n);
+        bc_rotating_velocity(o, ax, w, c->m->face_centre + 3 * f, n, bp->value + 3 * i);
+    }
+    return 0;
+}
 
 static int has_value(int kind) { return kind == BC_FIXED_VALUE || kind == BC_MOVING_WALL || kind == BC_CALCULATED; }
 
@@ -118,7 +240,8 @@ static int parse_patch(const Ctx *c, int p, Err *e)
     if (kind < 0)
         return PATCH_ERR(c, p,
                          "patch '%s' of field '%s': unknown boundary condition type '%s' (known: fixedValue "
-                         "zeroGradient noSlip movingWall slip symmetryPlane symmetry cyclic empty calculated)",
+                         "zeroGradient noSlip movingWall slip symmetryPlane symmetry cyclic empty calculated "
+                         "partialSlip rotatingWallVelocity)",
                          name, c->f->name, pf->type ? pf->type : "");
     if (vector_only(kind) && c->f->width != 3)
         return PATCH_ERR(c, p, "patch '%s': type %s is for vector fields; field '%s' is a scalar field", name,
@@ -137,6 +260,10 @@ static int parse_patch(const Ctx *c, int p, Err *e)
         memcpy(bp->value, pf->value, nv * sizeof *bp->value);
     } else if (kind == BC_NO_SLIP) {
         bp->value = MEM_NEW(double, nv);
+    } else if (kind == BC_PARTIAL_SLIP) {
+        return parse_partial_slip(c, p, bp, e);
+    } else if (kind == BC_ROTATING_WALL) {
+        return parse_rotating(c, p, bp, e);
     }
     return 0;
 }
@@ -216,18 +343,8 @@ static int scalar_or_neumann(const Bc *bc, BcKind k)
     return k == BC_ZERO_GRADIENT || k == BC_EMPTY || ((k == BC_SLIP || k == BC_SYMMETRY_PLANE) && bc->width == 1);
 }
 
-/* The wall normal of boundary face b: the geometry's exact one where the
-   grid has it (a unit vector), else the face's. */
-static void wall_normal(const FvMesh *fm, int b, double *n)
-{
-    const double *bn = fm->m->boundary_normal ? fm->m->boundary_normal + 3 * b : NULL;
-    if (bn && fabs(geom_norm(bn) - 1) < 1e-6)
-        memcpy(n, bn, 3 * sizeof *n);
-    else
-        memcpy(n, fm->nf + 3 * (fm->ninternal + b), 3 * sizeof *n);
-}
-
-/* The coefficients of face i of patch p that never change. */
+/* The coefficients of face i of patch p that never change (partialSlip's
+   all change: bc_update writes them). */
 static void fill_static(Bc *bc, const BcPatch *bp, int i)
 {
     const FvMesh *fm = bc->fm;
@@ -235,6 +352,8 @@ static void fill_static(Bc *bc, const BcPatch *bp, int i)
     double h = bc->h[s] = fm->h[f];
     wall_normal(fm, b, bc->n + 3 * s);
     bc->nbr[s] = -1;
+    bc->nu[s] = NAN;
+    if (bp->kind == BC_PARTIAL_SLIP) return;
     for (int k = 0; k < w; k++) {
         int j = s * w + k;
         if (bp->value) {
@@ -271,6 +390,7 @@ static void fill_cyclic(Bc *bc, const BcPatch *bp, int i)
     bc->nbr[s] = nb;
     bc->nbr_d[s] = dn;
     bc->nbr_w[s] = dc / (dc + dn);
+    bc->nu[s] = NAN;
     for (int k = 0; k < bc->width; k++) {
         int j = s * bc->width + k;
         bc->a[j] = dn / (dc + dn);
@@ -278,30 +398,76 @@ static void fill_cyclic(Bc *bc, const BcPatch *bp, int i)
     }
 }
 
-void bc_update(Bc *bc, const double *v)
+/* Slip's explicit part: basicSymmetry, one component at a time,
+   b_k = -n_k sum_{l != k} n_l u_l of the owner's u. */
+static void update_slip(Bc *bc, const BcPatch *bp, const double *v)
+{
+    const int *owner = bc->fm->m->owner;
+    for (int i = 0; i < bp->size; i++) {
+        int s = bp->slot + i;
+        const double *u = v + 3 * (size_t)owner[bp->start + i], *n = bc->n + 3 * s;
+        for (int k = 0; k < 3; k++) {
+            int j = s * 3 + k;
+            bc->b[j] = -n[k] * (geom_dot(n, u) - n[k] * u[k]);
+            bc->gb[j] = bc->b[j] / bc->h[s];
+        }
+    }
+}
+
+/* A cyclic face's periodic neighbour xi_N: b = w_N xi_N and the
+   gradient's part (xi_N - xi_C) / (dC + dN). */
+static void update_cyclic(Bc *bc, const BcPatch *bp, const double *v)
+{
+    int w = bc->width;
+    for (int i = 0; i < bp->size; i++) {
+        int s = bp->slot + i;
+        for (int k = 0; k < w; k++) {
+            int j = s * w + k;
+            double xn = v[bc->nbr[s] * w + k];
+            bc->b[j] = bc->nbr_w[s] * xn;
+            bc->gb[j] = -bc->ga[j] * xn;
+        }
+    }
+}
+
+/* partialSlip: nu of eq. 2.35 from the owner's u (bc_coulomb_nu; 0
+   without a wall state), then u_b = u_S + nu (I - n n^T)(u - u_S) split
+   as slip's: a_k = nu (1 - n_k^2) on the diagonal, the rest
+   b_k = u_S,k - nu (u_S,k - n_k n.u_S + n_k sum_{l != k} n_l u_l)
+   explicit, the gradient (u_b - u)/h_f (eq. 4.63). */
+static void update_partial_slip(Bc *bc, const BcPatch *bp, const double *v)
 {
     const FvMesh *fm = bc->fm;
-    int w = bc->width;
+    int state = bc->p_b && bc->eta_b;
+    for (int i = 0; i < bp->size; i++) {
+        int f = bp->start + i, b = f - fm->ninternal, s = bp->slot + i;
+        const double *u = v + 3 * (size_t)fm->m->owner[f], *n = bc->n + 3 * s, *us = bp->us + 3 * i;
+        double d[3] = {u[0] - us[0], u[1] - us[1], u[2] - us[2]}, dn = geom_dot(n, d);
+        double dt[3] = {d[0] - dn * n[0], d[1] - dn * n[1], d[2] - dn * n[2]}, h = bc->h[s];
+        double nu = state ? bc_coulomb_nu(bc->p_b[b], bc->eta_b[b], bp->tan_phi, h, geom_norm(dt)) : 0;
+        double nus = geom_dot(n, us);
+        bc->nu[s] = nu;
+        for (int k = 0; k < 3; k++) {
+            int j = s * 3 + k;
+            bc->a[j] = nu * (1 - n[k] * n[k]);
+            bc->b[j] = us[k] - nu * (us[k] - n[k] * nus + n[k] * (geom_dot(n, u) - n[k] * u[k]));
+            bc->ga[j] = (bc->a[j] - 1) / h;
+            bc->gb[j] = bc->b[j] / h;
+        }
+    }
+}
+
+void bc_update(Bc *bc, const double *v)
+{
     for (int p = 0; p < bc->npatches; p++) {
         const BcPatch *bp = &bc->patch[p];
-        int slip = (bp->kind == BC_SLIP || bp->kind == BC_SYMMETRY_PLANE) && w == 3;
-        if (!slip && bp->kind != BC_CYCLIC) continue;
-        for (int i = 0; i < bp->size; i++) {
-            int f = bp->start + i, s = bp->slot + i;
-            for (int k = 0; k < w; k++) {
-                int j = s * w + k;
-                if (slip) {
-                    const double *u = v + 3 * fm->m->owner[f], *n = bc->n + 3 * s;
-                    /* basicSymmetry, one component at a time: -n_k sum_{l != k} n_l u_l */
-                    bc->b[j] = -n[k] * (geom_dot(n, u) - n[k] * u[k]);
-                    bc->gb[j] = bc->b[j] / bc->h[s];
-                } else {
-                    double xn = v[bc->nbr[s] * w + k];
-                    bc->b[j] = bc->nbr_w[s] * xn;
-                    bc->gb[j] = -bc->ga[j] * xn; /* (xi_N - xi_C) / (dC + dN) */
-                }
-            }
-        }
+        if (bp->slot < 0) continue;
+        if ((bp->kind == BC_SLIP || bp->kind == BC_SYMMETRY_PLANE) && bc->width == 3)
+            update_slip(bc, bp, v);
+        else if (bp->kind == BC_CYCLIC)
+            update_cyclic(bc, bp, v);
+        else if (bp->kind == BC_PARTIAL_SLIP)
+            update_partial_slip(bc, bp, v);
     }
 }
 
@@ -326,6 +492,7 @@ static void allocate(Bc *bc, int w)
     bc->nbr = MEM_NEW(int, ns);
     bc->nbr_w = MEM_NEW(double, ns);
     bc->nbr_d = MEM_NEW(double, ns);
+    bc->nu = MEM_NEW(double, ns);
 }
 
 static int parse(Ctx *c, Err *e)
@@ -365,7 +532,10 @@ int bc_init(Bc *bc, const Field *f, const FvMesh *fm, Err *e)
 
 void bc_free(Bc *bc)
 {
-    for (int p = 0; p < bc->npatches && bc->patch; p++) free(bc->patch[p].value);
+    for (int p = 0; p < bc->npatches && bc->patch; p++) {
+        free(bc->patch[p].value);
+        free(bc->patch[p].us);
+    }
     free(bc->patch);
     free(bc->a);
     free(bc->b);
@@ -377,6 +547,7 @@ void bc_free(Bc *bc)
     free(bc->nbr);
     free(bc->nbr_w);
     free(bc->nbr_d);
+    free(bc->nu);
     memset(bc, 0, sizeof *bc);
 }
 
@@ -403,6 +574,12 @@ static void patch_values(const Bc *bc, const BcPatch *bp, const double *v, int k
         for (int b = b0; b < b0 + bp->size; b++) {
             const double *n = bc->n + 3 * (s0 + b), *own = v + (size_t)owner[b] * 3;
             xb[(size_t)b * stride] = own[k] - geom_dot(n, own) * n[k];
+        }
+    } else if (bp->kind == BC_PARTIAL_SLIP) { /* u_S + nu (I - n n^T)(u - u_S) */
+        for (int b = b0; b < b0 + bp->size; b++) {
+            const double *n = bc->n + 3 * (s0 + b), *own = v + (size_t)owner[b] * 3, *us = bp->us + 3 * (b - b0);
+            double d[3] = {own[0] - us[0], own[1] - us[1], own[2] - us[2]};
+            xb[(size_t)b * stride] = us[k] + bc->nu[s0 + b] * (d[k] - geom_dot(n, d) * n[k]);
         }
     } else {
         for (int b = b0; b < b0 + bp->size; b++) xb[(size_t)b * stride] = v[(size_t)owner[b] * w + k];

@@ -39,6 +39,36 @@
 **                   the current values (bc_update).  A scalar: zero
 **                   gradient.
 **   symmetryPlane   as slip (and OpenFOAM's symmetry likewise)
+**   partialSlip     the Coulomb wall of the granular model (thesis eq.
+**                   2.32-2.36, spec §1.4 and correction 3; vector fields
+**                   only): `frictionAngle phi;` in degrees, 0 <= phi <= 90
+**                   (0 slip, 90 no-slip), required; the wall velocity u_S
+**                   from `wallVelocity (ux uy uz);`, else the value entry,
+**                   else 0 (BcPatch.us).  With n as slip's,
+**                       u_b = u_S + nu (I - n n^T)(u_in - u_S):
+**                   the normal part Dirichlet (u_S.n), the tangential part
+**                   nu u_in,t + (1 - nu) u_S,t, nu of eq. 2.35 from the
+**                   wall pressure and viscosity (bc_coulomb_nu,
+**                   bc_set_wall_state), h = h_f.  nu is lagged: bc_update
+**                   computes it from the current owner value (Bc.nu) and
+**                   the condition is then linear as slip's, a_k =
+**                   nu (1 - n_k^2) on the diagonal, the rest in b_k.  So
+**                   bc_update changes a and ga of these faces (and only
+**                   these): nu = 0 gives noSlip's (movingWall's)
+**                   coefficients, nu = 1 with u_S = 0 slip's, to the bit.
+**                   Without a wall state nu = 0.  In 3-D the rule acts on
+**                   the tangential vector u_in,t - u_S,t, not on Cartesian
+**                   components (doc/theory.md: rotation invariant; in 2-D
+**                   the thesis's component-wise rule exactly).
+**   rotatingWallVelocity  OpenFOAM's: `origin (x y z); axis (x y z);
+**                   omega w;` (rad/s; also `omega constant w;`): u_b =
+**                   omega (axis/|axis|) x (x_f - origin) at the face
+**                   centre, less its component along n (the exact normal
+**                   where the grid has it, else the face's, as OpenFOAM
+**                   does), so a cut wall whose face centres are off the
+**                   surface pumps no mass through it.  A fixed value
+**                   computed once (vector fields only; a value entry is
+**                   ignored, as OpenFOAM recomputes it).
 **   cyclic          the patch's faces paired in order with its
 **                   neighbourPatch's: face i couples its owner C to the
 **                   owner N of partner face i, a periodic neighbour whose
@@ -75,6 +105,8 @@ typedef enum BcKind {
     BC_CYCLIC,
     BC_EMPTY,
     BC_CALCULATED,
+    BC_PARTIAL_SLIP,
+    BC_ROTATING_WALL,
     BC_NKINDS
 } BcKind;
 
@@ -85,7 +117,11 @@ typedef struct BcPatch {
     int partner;       /* cyclic: the neighbourPatch's index, else -1 */
     double shift[3];   /* cyclic: partner face centre - own face centre */
     double *value;     /* size*width fixed values (fixedValue, movingWall,
-                          calculated; noSlip: zeros), else NULL */
+                          calculated, rotatingWallVelocity; noSlip:
+                          zeros), else NULL */
+    double *us;        /* partialSlip: size*3 wall velocities u_S, else NULL */
+    double phi;        /* partialSlip: the friction angle in degrees */
+    double tan_phi;    /* partialSlip: tan phi (INFINITY at 90 degrees) */
 } BcPatch;
 
 typedef struct Bc {
@@ -105,6 +141,12 @@ typedef struct Bc {
     int *nbr;          /* cyclic: the partner face's owner cell, else -1 */
     double *nbr_w;     /* cyclic: weight of xi_N in the face value, else 0 */
     double *nbr_d;     /* cyclic: dN, the partner owner's normal distance */
+    double *nu;        /* partialSlip: the lagged nu of eq. 2.35 of the last
+                          bc_update (0 sticks, 1 slips freely); NaN on the
+                          slots of other types */
+    /* bc_set_wall_state: the wall pressure and viscosity per boundary face
+       b (nboundary numbers each, the caller's), or NULL */
+    const double *p_b, *eta_b;
 } Bc;
 
 /* Where boundary face b's coefficients are: its index among the faces of
@@ -124,14 +166,18 @@ const char *bc_kind_name(BcKind k);
 int bc_init(Bc *bc, const Field *f, const FvMesh *fm, Err *e);
 void bc_free(Bc *bc);
 
-/* Refreshes the explicit parts b, gb that depend on the cell values v
-   (ncells*width): slip's cross-components and cyclic neighbours.  The
-   other faces' coefficients never change. */
+/* Refreshes the parts that depend on the cell values v (ncells*width):
+   b, gb of slip's cross-components and of cyclic neighbours, and on
+   partialSlip faces nu (from the owner's value, the wall state and h_f)
+   with all four coefficients.  The other faces' coefficients never
+   change; partialSlip's a and ga do, so a matrix assembled before a
+   bc_update is not the new one's (the solver reassembles every step). */
 void bc_update(Bc *bc, const double *v);
 
 /* The boundary value of every boundary face from the cell values v:
    xb[b*width + k], exactly (slip: the owner's value with its normal part
-   removed; cyclic: the value between the two nodes).  After bc_update(bc,
+   removed; partialSlip: u_S + nu (I - n n^T)(u_C - u_S) with the nu of the
+   last bc_update; cyclic: the value between the two nodes).  After bc_update(bc,
    v) this is a xi_C + b, with xi_C the owner's value.  The boundary
    sources of stencils (fv/stencil.h) read one component of it.  Faces of
    empty patches are skipped: their entries of xb are left as they were
@@ -147,6 +193,40 @@ void bc_states(const Bc *bc, const double *v, double *xb);
 /* Does a patch whose U is of kind k carry mass: fixedValue, zeroGradient
    or calculated (not a wall, not empty, not cyclic)? */
 int bc_kind_open(BcKind k);
+
+/* ---- walls (bc_wall.c) ---- */
+
+/* Is a patch whose U is of kind k an impermeable wall (no mass through
+   it, phi_f = 0): noSlip, movingWall, slip, symmetryPlane, partialSlip,
+   rotatingWallVelocity? */
+int bc_kind_wall(BcKind k);
+
+/* The wall state partialSlip needs (eq. 2.33-2.35): the wall pressure
+   W^n = p_b[b] and the viscosity eta_b[b] at every boundary face b
+   (nboundary numbers each; only the partialSlip faces are read).  The
+   pointers are kept, not the numbers: fill the arrays before each
+   bc_update.  NULL (either) is no state: partialSlip is then noSlip at
+   u_S (nu = 0). */
+void bc_set_wall_state(Bc *bc, const double *p_b, const double *eta_b);
+
+/* nu of eq. 2.35 at one face: u_b,t = nu u_I,t + (1 - nu) u_S,t with
+   dut = |u_I,t - u_S,t|, h = h_f, tan_phi of the friction angle
+   (INFINITY: no-slip):
+       nu = 0                              sticking, eta dut <= p tan_phi h
+       nu = 1 - p tan_phi h / (eta dut)    sliding: the wall stress is p tan_phi
+   A wall without friction (tan_phi = 0, or p <= 0) slips: nu = 1, also
+   at dut = 0; a NaN sticks (nu = 0).  Always 0 <= nu <= 1. */
+double bc_coulomb_nu(double p, double eta, double tan_phi, double h, double dut);
+
+/* OpenFOAM's rotatingWallVelocity at a point x: omega (axis/|axis|) x
+   (x - origin), less its component along the unit vector n (NULL: kept). */
+void bc_rotating_velocity(const double origin[3], const double axis[3], double omega, const double x[3],
+                          const double *n, double u[3]);
+
+/* How many faces of the partialSlip patches slide (nu > 0 after the last
+   bc_update); *nfaces (if not NULL) gets how many faces those patches
+   have. */
+int bc_slip_count(const Bc *bc, int *nfaces);
 
 /* The open patches of an isothermal compressible model (bc_open.c): at
    each, exactly one of rho and U fixed (inflow: fixedValue U,
