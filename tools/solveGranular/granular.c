@@ -88,6 +88,10 @@ int granmodel_init(Granular *g, Field *T, const Dict *fvsolution, Err *e)
     face_areas(g->f, m->area);
     if (check_initial(g, e)) return -1;
     m->solved = !g->pr.freezeT;
+    /* partialSlip's Coulomb bound (eq. 2.35): the wall pressure (the
+       core's boundary pressures, g->xbr when the momentum is assembled)
+       and the wall viscosity eta_f of the boundary faces */
+    bc_set_wall_state(&g->bc_U, g->xbr, m->eta_f + g->f->ninternal);
     return m->solved ? init_solver(g, fvsolution, e) : 0;
 }
 
@@ -168,8 +172,8 @@ void granmodel_limit_c(Granular *g)
 }
 
 /* U's boundary values with the wall velocity u_S at impermeable walls:
-   slip walls are at rest (u_S = 0), the others' values are their wall
-   velocities already (granular.h: the heating sees the whole gradient). */
+   slip walls are at rest (u_S = 0), partialSlip walls move at their
+   wallVelocity, the others' values are their wall velocities already (granular.h: the heating sees the whole gradient). */
 static void wall_values(Granular *g)
 {
     const FvMesh *f = g->f;
@@ -177,8 +181,9 @@ static void wall_values(Granular *g)
     bc_values(&g->bc_U, g->U->v, ub);
     for (int b = 0; b < f->nboundary; b++) {
         if (f->empty_face[f->ninternal + b] || !g->wall[b]) continue;
-        BcKind kind = g->bc_U.patch[f->face_patch[b]].kind;
-        if (kind == BC_SLIP) ub[3 * b] = ub[3 * b + 1] = ub[3 * b + 2] = 0;
+        const BcPatch *bp = &g->bc_U.patch[f->face_patch[b]];
+        if (bp->kind == BC_SLIP) ub[3 * b] = ub[3 * b + 1] = ub[3 * b + 2] = 0;
+        if (bp->kind == BC_PARTIAL_SLIP) memcpy(ub + 3 * b, bp->us + 3 * (f->ninternal + b - bp->start), 3 * sizeof(double));
     }
 }
 

@@ -122,6 +122,8 @@ static void log_granular(const Granular *g)
 {
     const GranModel *m = &g->gm;
     if (m->solved) log_solve(&m->set, &m->st);
+    int nf, nslide = bc_slip_count(&g->bc_U, &nf);
+    if (nf) printf("partialSlip: %d of %d wall faces slide (Coulomb, eq. 2.35)\n", nslide, nf);
     const GranLimits *l = &m->last, *t = &m->total;
     if (l->cmax || l->tmin || l->cmin || t->cmax || t->tmin || t->cmin)
         printf("Limits: c <= cMax - deltaC %ld (%ld in all), T >= Tmin %ld (%ld), c floored to cMin %ld (%ld)\n",

@@ -113,18 +113,31 @@ static int granular_gravity(const GranSchemes *sch, int *scheme, Err *e)
     return 0;
 }
 
-/* Impermeable boundary faces of U: noSlip, movingWall, slip, symmetryPlane
-   (granular.c's wall velocities follow the same list). */
+/* Impermeable boundary faces of U: noSlip, movingWall, rotatingWallVelocity,
+   slip, partialSlip, symmetryPlane (bc_kind_wall; granular.c's wall
+   velocities follow the same list). */
 static void mark_walls(Granular *g)
 {
     const FvMesh *f = g->f;
     g->wall = mem_calloc((size_t)f->nboundary + 1, 1);
     for (int p = 0; p < g->bc_U.npatches; p++) {
         const BcPatch *bp = &g->bc_U.patch[p];
-        int w = bp->kind == BC_NO_SLIP || bp->kind == BC_MOVING_WALL || bp->kind == BC_SLIP ||
-                bp->kind == BC_SYMMETRY_PLANE;
+        int w = bc_kind_wall(bp->kind);
         for (int j = 0; j < bp->size; j++) g->wall[bp->start + j - f->ninternal] = (char)w;
     }
+}
+
+/* partialSlip is the granular model's Coulomb wall (eq. 2.35): its wall
+   stress p tan(phi) needs the granular pressure; model Newtonian refuses
+   it at the line of U's patch entry. */
+static int check_partial_slip(const Granular *g, const Field *U, Err *e)
+{
+    for (int p = 0; p < g->bc_U.npatches; p++)
+        if (g->bc_U.patch[p].kind == BC_PARTIAL_SLIP)
+            return err_set(e, U->pf[p].file, U->pf[p].line,
+                           "partialSlip is the granular model's Coulomb wall (model granular); model Newtonian takes "
+                           "noSlip, slip or movingWall");
+    return 0;
 }
 
 /* The work arrays, each used for several things in turn (the lifetimes
@@ -198,7 +211,9 @@ int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProp
     if (bc_init(&g->bc_U, U, f, e)) return -1;
     /* the isothermal model's open-boundary rule (bc_open.c); the granular
        inflow fixes c and u both, as the thesis's (spec §1.4) */
-    if (g->model != MODEL_GRANULAR && bc_check_open(&g->bc_rho, &g->bc_U, rho, U, sqrt(pr->RsT), e)) return -1;
+    if (g->model != MODEL_GRANULAR &&
+        (bc_check_open(&g->bc_rho, &g->bc_U, rho, U, sqrt(pr->RsT), e) || check_partial_slip(g, U, e)))
+        return -1;
     mark_walls(g);
     alloc_work(g);
     g->flux_skip = flux_skip(f);
@@ -389,6 +404,8 @@ static int solve_component(Granular *g, int j, double dt, Err *e)
     FvMatrix *M = &g->M;
     double t0 = now();
     int gr = g->model == MODEL_GRANULAR;
+    if (gr && j == 0) /* partialSlip's nu from this step's wall pressure and eta_f (granular.h) */
+        bc_update(&g->bc_U, g->U->v);
     if (j == 0 || !fvm_same_matrix(&g->op, g->axis[j - 1], k)) {
         fvmatrix_zero_values(M);
         fvm_ddt(M, f, gr ? g->gm.cfl : g->rho1, dt); /* granular: c floored (granular.h) */

@@ -28,6 +28,11 @@
 #   - limits: a packing pushed to cMax by gravity against a wall: the log
 #     counts the clamps ("Limits: c <= cMax - deltaC ...") and the run
 #     finishes with c <= cMax - deltaC everywhere;
+#   - partialSlip (eq. 2.35): a lid moving at 1 m/s over a dilute layer
+#     (c 0.1, T 0.01) with Coulomb walls of 30 degrees everywhere: the run
+#     finishes, the log counts the sliding faces and some slide (the wall
+#     stress reaches p tan 30 under the lid); with frictionAngle 90 none
+#     slide;
 #   - restart: 40 steps against 20 + a restart (binary): alpha, U, Theta
 #     and p identical;
 #   - bad input: a missing cMax, c0 >= cMax, epsilon0 with grainDiameter,
@@ -191,6 +196,24 @@ cmax=$(maxdev $c "$(lasttime $c)" alpha 0)
 if [ $rc -eq 0 ] && grep -q '^Limits: c <= cMax - deltaC' $c/log && le "$cmax" 0.62000000001; then
     pass granular_limits "$(grep '^Limits' $c/log | tail -n 1), max c $cmax"
 else fail granular_limits "rc $rc, max c $cmax, $(grep -c '^Limits' $c/log) limit lines; $(tail -n 2 $c/log)"; fi
+
+# ---- partialSlip ----
+for ang in 30 90; do
+    c=pslip_$ang
+    mkdir -p $c && grid $c 8 8 1 1 && "$BIN/blockGrid" -case $c >$c/log.blockGrid 2>&1
+    gcase $c 'endTime 0.05; deltaT 1e-3; writeControl runTime; writeInterval 0.05; writeFormat ascii;' \
+        'eta0 0.0035; lambda0 0.00034; epsilon0 63.4921; cMax 0.64; c0 0.3; T0 0.5;' 0.1 0.01 noSlip
+    sed -i "s/\".\*\" { type noSlip; }/\".*\" { type partialSlip; frictionAngle $ang; } walls { type partialSlip; frictionAngle $ang; wallVelocity (1 0 0); }/" $c/0/U
+    sed -i 's/yMin { name walls; type wall; }/yMin { name floor; type wall; }/; s/xMin { name inlet; }/xMin { name floor; type wall; }/; s/xMax { name outlet; }/xMax { name floor; type wall; }/' $c/system/blockGridDict
+    "$BIN/blockGrid" -case $c >$c/log.blockGrid 2>&1
+    "$BIN/solveGranular" -case $c >$c/log 2>&1; rc=$?
+    slides=$(awk '/^partialSlip:/ { if ($2 > m) m = $2 } END { print m + 0 }' $c/log)
+    lines=$(grep -c '^partialSlip:' $c/log)
+    want=$([ $ang = 30 ] && echo '-gt' || echo '-eq')
+    if [ $rc -eq 0 ] && [ "$lines" -eq 50 ] && [ "$slides" $want 0 ]; then
+        pass granular_partialSlip_$ang "at most $slides wall faces slide in a step ($(grep -m1 '^partialSlip:' $c/log))"
+    else fail granular_partialSlip_$ang "rc $rc, $lines log lines, at most $slides sliding; $(tail -n 2 $c/log)"; fi
+done
 
 # ---- restart, binary ----
 for c in once twice; do

@@ -174,8 +174,8 @@ void mms_case_init(MmsCase *k, const Study *s, int N)
     field_init(&k->rho, &k->m, "rho", 1, &one, "zeroGradient");
     field_init(&k->U, &k->m, "U", 3, zero, "noSlip");
     initial_state(s, k);
-    GranularProps pr = {MODEL_NEWTONIAN, s->mu, s->RsT, {0, 0, 0}};
-    GranSchemes sch = {{div_scheme(s->div), div_scheme(s->div)}, GRAN_WELL_BALANCED};
+    GranularProps pr = {.model = MODEL_NEWTONIAN, .mu = s->mu, .RsT = s->RsT};
+    GranSchemes sch = {.div = {div_scheme(s->div), div_scheme(s->div), div_scheme(s->div)}, .gravity = GRAN_WELL_BALANCED};
     k->sol = dict_parse(FVSOLUTION, strlen(FVSOLUTION), "fvSolution", &e);
     if (!k->sol || gran_init(&k->g, &k->f, &k->ip, &pr, &sch, &k->rho, &k->U, NULL, k->sol, &e)) die("gran_init", &e);
     k->g.src = (GranSource){source_steady, &k->src};
