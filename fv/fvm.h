@@ -34,7 +34,8 @@
 ** FvMatrix.face_pos are its positions).
 **
 ** The matrix values depend on the boundary conditions only through a and
-** ga (bc.h), which bc_update never changes, the right-hand side through b
+** ga (bc.h), which bc_update changes only on partialSlip faces (its lagged
+** slip fraction), the right-hand side through b
 ** and gb; so the values and the right-hand side are assembled apart
 ** (fvm_laplacian_matrix, fvm_laplacian_rhs), and the components of a
 ** vector whose a and ga agree (everywhere but on slip walls) share one
