@@ -166,6 +166,7 @@ tutorial: deps
 	@$(MAKE) --no-print-directory all
 	@tutorials/basic/quickStart/Allrun
 	@tutorials/granular/cylinderFlow/Allrun
+	@tutorials/granular/rotatingDisc/Allrun
 
 bench: all
 	@KIESEL_BIN=$(abspath $(BIN)) bench/run
