@@ -71,6 +71,55 @@ TEST(mistakes)
         "g:3:");
 }
 
+/* model granular: the coefficients, the defaults, epsilon0 from a grain
+   (eq. 2.24), and its mistakes with file:line. */
+TEST(granular)
+{
+    GranularProps p;
+    Err e;
+    EXPECT(parse(&p, HEADER "model granular;\ngranularCoeffs { eta0 0.00102573; lambda0 0.00034; epsilon0 216.649; "
+                            "cMax 0.8; c0 0.3; T0 0.5; }\n",
+                 NULL, &e) == 0,
+           "%s", e.msg);
+    EXPECT(p.model == MODEL_GRANULAR, "model %d", p.model);
+    NEAR(p.k.eta0, 0.00102573, 0);
+    NEAR(p.k.eps0, 216.649, 0);
+    NEAR(p.k.cmax, 0.8, 0);
+    NEAR(p.k.c0, 0.3, 0);
+    NEAR(p.k.T0, 0.5, 0);
+    NEAR(p.k.KT, 2.0 / 3.0, 0);
+    NEAR(p.dc, 1e-6, 0);
+    NEAR(p.Tmin, 1e-12, 0);
+    NEAR(p.cmin, 1e-8, 0);
+    EXPECT(!p.freezeT, "freezeT %d", p.freezeT);
+    EXPECT(parse(&p, HEADER "model granular;\ngranularCoeffs { eta0 1e-3; lambda0 1e-3; grainDiameter 1e-3; restitution 0.9; "
+                            "cMax 0.64; KT 1.5; freezeT yes; }\n",
+                 NULL, &e) == 0,
+           "%s", e.msg);
+    NEAR(p.k.eps0, closure_eps0_from_grain(1e-3, 0.9), 0);
+    EXPECT(p.k.eps0 > 0, "eps0 %g", p.k.eps0);
+    NEAR(p.k.KT, 1.5, 0);
+    NEAR(p.k.c0, 0, 0);
+    EXPECT(p.freezeT, "freezeT %d", p.freezeT);
+    const char *G = HEADER "model granular;\n";
+    char buf[512];
+    static const char *const cases[][2] = {
+        {"granularCoeffs { eta0 1; lambda0 1; epsilon0 1; }", "cMax"},
+        {"granularCoeffs { eta0 1; lambda0 1; cMax 0.6; }", "missing epsilon0"},
+        {"granularCoeffs { eta0 1; lambda0 1; epsilon0 1; cMax 1.2; }", "cMax must be in (0, 1]"},
+        {"granularCoeffs { eta0 1; lambda0 1; epsilon0 1; cMax 0.6; c0 0.6; }", "c0 must be below cMax"},
+        {"granularCoeffs { eta0 1; lambda0 1; grainDiameter 1; restitution 1.5; cMax 0.6; }", "restitution must be in"},
+        {"granularCoeffs { eta0 -1; lambda0 1; epsilon0 1; cMax 0.6; }", "eta0 must be in"},
+        {"granularCoeffs { eta0 1; lambda0 1; epsilon0 1; cMax 0.6; KT 0; }", "KT must be in"},
+        {"granularCoeffs { eta0 1; lambda0 1; epsilon0 1; cMax 0.6; mu 3; }", "unknown keyword 'mu'"},
+        {"NewtonianCoeffs { mu 1; RsT 6; }", "granularCoeffs"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        snprintf(buf, sizeof buf, "%s%s\n", G, cases[i][0]);
+        bad(buf, NULL, cases[i][1]);
+    }
+}
+
 /* From a case directory: constant/g is optional, granularProperties not. */
 TEST(case_files)
 {
@@ -106,6 +155,7 @@ int main(void)
 {
     RUN(case_files);
     RUN(newtonian);
+    RUN(granular);
     RUN(mistakes);
     return test_summary();
 }
