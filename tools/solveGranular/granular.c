@@ -17,6 +17,16 @@
 
 #include "mem.h"
 
+#include <time.h>
+
+/* Monotonic clock in seconds, for the step profile (Granular.t_*). */
+static double clock_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 /* The unknowns' field names, for messages. */
 #define C_NAME "alpha"
 #define T_NAME "Theta"
@@ -123,6 +133,7 @@ void granmodel_closures(Granular *g)
 {
     GranModel *m = &g->gm;
     if (m->fresh) return;
+    double t0 = clock_s();
     const FvMesh *f = g->f;
     const GranCoeffs *k = &g->pr.k;
     const double *c = g->rho->v, *T = m->T->v;
@@ -149,6 +160,7 @@ void granmodel_closures(Granular *g)
         m->speed_f[i] = i < f->ninternal ? fmax(s, speed[f->m->neighbour[i]]) : s;
     }
     m->fresh = 1;
+    g->t_explicit += clock_s() - t0; /* the profile's "explicit terms" */
 }
 
 double granmodel_boundary_pressure(const Granular *g, int b)
@@ -275,10 +287,15 @@ int granmodel_temperature(Granular *g, double dt, Err *e)
     const FvMesh *f = g->f;
     memcpy(m->T1, m->T->v, sizeof(double) * (size_t)f->ncells);
     if (!m->solved) return 0;
+    double t0 = clock_s();
     heating(g);
     convect_cT(g);
     assemble_T(g, dt);
-    if (linsolve_solve_tracked(m->L, m->T1, &m->st, e)) return -1;
+    double t1 = clock_s();
+    g->t_assembly += t1 - t0; /* the profile's "assembly": heating, convection of cT, the matrix */
+    int rc = linsolve_solve_tracked(m->L, m->T1, &m->st, e);
+    g->t_solve += clock_s() - t1;
+    if (rc) return -1;
     for (int i = 0; i < f->ncells; i++) {
         if (!isfinite(m->T1[i])) {
             const double *x = f->node + 3 * i;

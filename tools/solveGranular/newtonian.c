@@ -241,7 +241,7 @@ void gran_free(Granular *g)
     memset(g, 0, sizeof *g);
 }
 
-/* Monotonic clock in seconds, for the step profile. */
+/* Monotonic clock in seconds, for the step profile (granular.c keeps its own for its parts). */
 static double now(void)
 {
     struct timespec ts;
