@@ -126,17 +126,23 @@ typedef struct Seg {
 void cut_opts_default(CutOpts *o)
 {
     o->snap = CUT_SNAP;
+    o->method = CUT_METHOD_CUT;
 }
+
+static const char *const cut_methods[] = {"cut", "staircase", NULL};
 
 const DictKey cut_keys[] = {
     {"snapTolerance", "1e-08", "cut points closer than this fraction of an edge to a grid vertex move onto it"},
+    {"method", "cut", "cut: exact cut cells; staircase: keep whole every Cartesian cell whose centre is in the fluid, "
+                      "the wall a staircase of grid faces (the thesis's Cartesian runs)"},
     {NULL, NULL, NULL}};
 
 int cut_read_opts(const char *path, CutOpts *o, Err *e)
 {
     cut_opts_default(o);
     Dict *d = dict_read(path, e);
-    int rc = !d || dict_check_keys(d, cut_keys, e) || dict_scalar_or(d, "snapTolerance", o->snap, &o->snap, e);
+    int rc = !d || dict_check_keys(d, cut_keys, e) || dict_scalar_or(d, "snapTolerance", o->snap, &o->snap, e) ||
+             dict_choice_or(d, "method", cut_methods, o->method, &o->method, e);
     /* snapping moves a point by at most a quarter edge, so neighbouring
        cut points on one edge can never swap */
     if (!rc && !(o->snap >= 0 && o->snap < 0.25)) {
@@ -1594,7 +1600,7 @@ static void cell_faces(Ctx *c, int i, int j, int k)
 
 /* ---- assembly ---- */
 
-static int setup(Ctx *c, const Mesh *grid, Err *e)
+int cut_check_grid(const Mesh *grid, const Geometry *g, Err *e)
 {
     const CartGrid *cg = &grid->cart;
     if (cg->n[0] <= 0 || cg->n[1] <= 0 || cg->n[2] <= 0 || !cg->x[0] || !cg->x[1] || !cg->x[2])
@@ -1603,10 +1609,17 @@ static int setup(Ctx *c, const Mesh *grid, Err *e)
         return err_set(e, NULL, 0, "the grid has %d cells but its cartesianGrid %d x %d x %d", grid->ncells,
                        cg->n[0], cg->n[1], cg->n[2]);
     for (int p = 0; p < grid->npatches; p++)
-        for (int s = 0; s < c->g->nsurf; s++)
-            if (!strcmp(grid->patches[p].name, c->g->surf[s].name))
-                return err_set(e, c->g->file, c->g->surf[s].line,
-                               "surface '%s' has the name of the grid's patch %d", c->g->surf[s].name, p);
+        for (int s = 0; s < g->nsurf; s++)
+            if (!strcmp(grid->patches[p].name, g->surf[s].name))
+                return err_set(e, g->file, g->surf[s].line, "surface '%s' has the name of the grid's patch %d",
+                               g->surf[s].name, p);
+    return 0;
+}
+
+static int setup(Ctx *c, const Mesh *grid, Err *e)
+{
+    const CartGrid *cg = &grid->cart;
+    if (cut_check_grid(grid, c->g, e)) return -1;
     for (int k = 0; k < 3; k++) {
         c->n[k] = cg->n[k];
         c->nv[k] = cg->n[k] + 1;
@@ -1731,6 +1744,7 @@ int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o, Mesh *out, C
     mesh_init(out);
     if (!(o->snap >= 0 && o->snap < 0.5))
         return err_set(e, NULL, 0, "snap distance %g outside [0, 0.5)", o->snap);
+    if (o->method == CUT_METHOD_STAIRCASE) return cut_staircase(grid, g, out, st, e);
     Ctx c;
     memset(&c, 0, sizeof c);
     c.g = g;

@@ -52,6 +52,11 @@
 ** 2-D grids (one cell thick between empty patches) need the geometry
 ** flattened first (geometry_flatten at the grid's mid-plane); the cut
 ** cells are then prisms of the marching-squares polygons.
+**
+** method staircase (cut_staircase.c) is the thesis's "Cartesian" grid
+** instead: every Cartesian cell whose centre is in the fluid is kept
+** whole, the others dropped, and the boundary is the staircase of grid
+** faces between kept and dropped cells.
 */
 #ifndef KIESEL_CUT_H
 #define KIESEL_CUT_H
@@ -60,8 +65,11 @@
 #include "geometry.h"
 #include "mesh.h"
 
+enum { CUT_METHOD_CUT, CUT_METHOD_STAIRCASE };
+
 typedef struct CutOpts {
     double snap;       /* relative snap distance (default CUT_SNAP) */
+    int method;        /* CUT_METHOD_CUT (default) or CUT_METHOD_STAIRCASE */
 } CutOpts;
 
 #define CUT_SNAP 1e-8
@@ -92,7 +100,8 @@ int cut_read_opts(const char *path, CutOpts *o, Err *e);
    is Cartesian cell (i, j, k)) by g into out (need not be initialised).
    out gets the Cartesian extras, cell_parent and boundary_normal (mesh.h).
    Fails when the grid has no Cartesian extras, a surface's patch name
-   clashes with a grid patch, or no cell is left. */
+   clashes with a grid patch, or no cell is left.  With o->method
+   CUT_METHOD_STAIRCASE every cell is whole (cut_staircase.c). */
 int cut_mesh(const Mesh *grid, const Geometry *g, const CutOpts *o,
              Mesh *out, CutStats *st, Err *e);
 

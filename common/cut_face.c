@@ -469,11 +469,11 @@ void cut_grid_face(Ctx *c, const int ijk[3], int64_t ci, int64_t v0, int a, int 
 }
 
 /* Side (0..5) of boundary face f of the grid, or -1. */
-static int face_side(const Ctx *c, const Mesh *grid, int f)
+int cut_box_side(const CartGrid *cg, const Mesh *grid, int f)
 {
     for (int a = 0; a < 3; a++)
         for (int hi = 0; hi < 2; hi++) {
-            double xs = c->x[a][hi ? c->n[a] : 0], tol = SIDE_TOL * (c->x[a][c->n[a]] - c->x[a][0]);
+            double xs = cg->x[a][hi ? cg->n[a] : 0], tol = SIDE_TOL * (cg->x[a][cg->n[a]] - cg->x[a][0]);
             int on = 1;
             for (int q = grid->face_off[f]; q < grid->face_off[f + 1] && on; q++)
                 on = fabs(grid->points[3 * (size_t)grid->face_idx[q] + a] - xs) <= tol;
@@ -489,7 +489,7 @@ int cut_box_faces(Ctx *c, const Mesh *grid, Err *e)
     for (int p = 0; p < grid->npatches; p++) {
         const Patch *P = &grid->patches[p];
         for (int f = P->start; f < P->start + P->size; f++) {
-            int side = face_side(c, grid, f), oc = grid->owner[f];
+            int side = cut_box_side(&grid->cart, grid, f), oc = grid->owner[f];
             if (side < 0)
                 return err_set(e, NULL, 0, "grid boundary face %d (patch %s) is not on a side of the box", f,
                                P->name);

@@ -7,6 +7,7 @@
 **               boundary loops, cells, the assembled polyMesh
 **   cut_face.c  grid faces: each cell's marching-squares polygon on a
 **               face, the part two cells share and the walls of the rest
+**   cut_staircase.c  method staircase: whole cells by their centres
 **
 ** Points on a grid edge.  Edge (v, a) is the key 3 v + a of the cut-point
 ** table.  Its entry holds the grid's own point (from the crossings of the
@@ -149,6 +150,8 @@ static inline int cut_vertex_point(Ctx *c, int64_t v)
 }
 
 /* cut.c */
+/* The grid is a block grid whose patch names no surface takes. */
+int cut_check_grid(const Mesh *grid, const Geometry *g, Err *e);
 int cut_point(Ctx *c, CutPt *p);
 int cut_cell_point(Ctx *c, int64_t key, int quad, int *leaf);
 int cut_view_point(Ctx *c, const CutPt *p, int k);
@@ -160,5 +163,11 @@ int cut_face_bits(int mask, int a, int hi);
 int cut_face_poly(Ctx *c, int a, int64_t v0, int bits, int up, Poly *p);
 void cut_grid_face(Ctx *c, const int ijk[3], int64_t ci, int64_t v0, int a, int hi, int cell, Poly *p);
 int cut_box_faces(Ctx *c, const Mesh *grid, Err *e);
+/* The side of the box (2 axis + hi) boundary face f of grid lies on, -1
+   none. */
+int cut_box_side(const CartGrid *cg, const Mesh *grid, int f);
+
+/* cut_staircase.c: cut_mesh's method staircase (cut.h). */
+int cut_staircase(const Mesh *grid, const Geometry *g, Mesh *out, CutStats *st, Err *e);
 
 #endif

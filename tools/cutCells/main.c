@@ -41,14 +41,16 @@ static const ArgDict dicts[] = {{"system/geometryDict", geometry_keys, NULL},
 static const ToolInfo tool = {"cutCells", "cuts a block grid with an immersed geometry into exact cut cells",
                               opts, dicts, 0};
 
-static void report(FILE *f, const CutStats *s, const Geometry *g, const Mesh *m)
+static void report(FILE *f, const CutStats *s, const Geometry *g, const Mesh *m, int method)
 {
     double lo[3], hi[3];
     for (int k = 0; k < 3; k++) {
         lo[k] = m->cart.x[k][0];
         hi[k] = m->cart.x[k][m->cart.n[k]];
     }
-    fprintf(f, "Cut cells\n");
+    fprintf(f, method == CUT_METHOD_STAIRCASE
+                   ? "Staircase cells (method staircase: every cell whose centre is in the fluid kept whole)\n"
+                   : "Cut cells\n");
     fprintf(f, "  Cartesian cells:         %d\n", s->ncart);
     fprintf(f, "  cells kept:              %d (%d cut, %d solid cells dropped)\n", s->ncells, s->ncut, s->nsolid);
     fprintf(f, "  immersed boundary faces: %d, area %.12g\n", s->nboundary, s->area_boundary);
@@ -104,7 +106,7 @@ int main(int argc, char **argv)
     if (cut_mesh(&grid, &g, &co, &m, &st, &e)) err_die(&e);
     double dt = args_wall(&a) - t0;
     fprintf(a.info, "Cut %d Cartesian cells in %.3f s (%.3g cells/s)\n\n", st.ncart, dt, dt > 0 ? st.ncart / dt : 0.0);
-    report(a.info, &st, &g, &m);
+    report(a.info, &st, &g, &m, co.method);
     gridtool_print_info(a.info, &m);
     gridtool_write(&a, &io, &m);
 
