@@ -16,8 +16,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "block.h"
+#include "cartcells.h"
 #include "cut.h"
 #include "dict.h"
 #include "geometry.h"
@@ -1317,6 +1319,115 @@ TEST(cut_csg_crossing_chords)
     mesh_free(&grid);
 }
 
+/* ---- method staircase (cut_staircase.c) ---- */
+
+/* The staircase grid of text on grid: each cell is a kept Cartesian
+   cell's box, the kept cells are exactly those whose centre the geometry
+   calls fluid, every wall face lies between a kept and a dropped cell
+   with its own axis-aligned normal as boundary normal, and the contract
+   has roles whole and outside only. */
+static void staircase_case(const Mesh *grid, const char *text, int *nkept)
+{
+    FixtureGeo G;
+    EXPECT(fixture_geo(&G, text) == 0, "geometry");
+    if (grid->cart.n[2] == 1) geometry_flatten(&G.g, 2, 0.5 * (grid->cart.x[2][0] + grid->cart.x[2][1]));
+    CutOpts o;
+    cut_opts_default(&o);
+    o.method = CUT_METHOD_STAIRCASE;
+    Mesh m;
+    CutStats st;
+    Err e;
+    int rc = cut_mesh(grid, &G.g, &o, &m, &st, &e);
+    EXPECT(rc == 0, "cut_mesh: %s", rc ? e.msg : "");
+    if (rc) {
+        fixture_geo_free(&G);
+        return;
+    }
+    char why[256];
+    EXPECT(check_grid(&m, why, sizeof why) == 0, "%s", why);
+    if (!m.face_area) mesh_geometry(&m);
+    EXPECT(mesh_check_cartesian(&m, CARTCELLS_TOL, &e) == 0, "contract: %s", e.msg);
+    const CartGrid *cg = &m.cart;
+    int nc = cg->n[0] * cg->n[1] * cg->n[2], kept = 0;
+    char *in = mem_alloc((size_t)nc);
+    for (int K = 0; K < nc; K++) {
+        int i = K % cg->n[0], j = (K / cg->n[0]) % cg->n[1], k = K / (cg->n[0] * cg->n[1]);
+        double x[3] = {(cg->x[0][i] + cg->x[0][i + 1]) / 2, (cg->x[1][j] + cg->x[1][j + 1]) / 2,
+                       (cg->x[2][k] + cg->x[2][k + 1]) / 2};
+        in[K] = geometry_fluid(&G.g, x) != 0;
+        kept += in[K];
+        int role = m.cartcells.role[K];
+        EXPECT(role == (in[K] ? CART_WHOLE : CART_OUTSIDE), "Cartesian cell %d: role %d, centre %s", K, role,
+               in[K] ? "inside" : "outside");
+    }
+    EXPECT(m.ncells == kept && st.ncells == kept && st.ncut == 0, "%d cells, %d centres inside", m.ncells, kept);
+    double vsum = 0;
+    for (int c = 0; c < m.ncells; c++) vsum += m.cell_vol[c];
+    NEAR(st.vol_fluid, vsum, 1e-12 * vsum);
+    int nwall = 0, wall_patch = m.npatches - 1;
+    for (int f = m.patches[wall_patch].start; f < m.patches[wall_patch].start + m.patches[wall_patch].size; f++) {
+        const double *S = m.face_area + 3 * f, *bn = m.boundary_normal + 3 * (f - m.ninternal);
+        double a = sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
+        int ax = fabs(S[0]) > 0.5 * a ? 0 : fabs(S[1]) > 0.5 * a ? 1 : 2;
+        EXPECT(fabs(fabs(S[ax]) - a) <= 1e-12 * a, "wall face %d is not axis-aligned", f);
+        for (int k = 0; k < 3; k++) NEAR(bn[k], S[k] / a, 1e-15);
+        /* the Cartesian cell across the face is a dropped one */
+        int K = m.cell_parent[m.owner[f]], step = ax == 0 ? 1 : ax == 1 ? cg->n[0] : cg->n[0] * cg->n[1];
+        int across = K + (S[ax] > 0 ? step : -step);
+        EXPECT(across >= 0 && across < nc && !in[across], "wall face %d: the cell across is kept", f);
+        nwall++;
+    }
+    EXPECT(nwall == st.nboundary && nwall > 0, "%d wall faces, %d reported", nwall, st.nboundary);
+    *nkept = kept;
+    free(in);
+    mesh_free(&m);
+    fixture_geo_free(&G);
+}
+
+TEST(cut_staircase_disc_and_sphere)
+{
+    Mesh g2, g3;
+    fixture_block(&g2, (const int[3]){24, 24, 1}, (const double[3]){-0.6, -0.6, 0}, (const double[3]){0.6, 0.6, 0.05}, 2);
+    fixture_block(&g3, (const int[3]){12, 12, 12}, (const double[3]){-0.6, -0.6, -0.6}, (const double[3]){0.6, 0.6, 0.6},
+                  -1);
+    int k2 = 0, k3 = 0;
+    staircase_case(&g2, "wall { flow inside; shape cylinder; point1 (0 0 -1); point2 (0 0 1); radius 0.5; }", &k2);
+    staircase_case(&g3, "wall { flow inside; shape sphere; centre (0 0 0); radius 0.5; }", &k3);
+    /* lattice counts: centres (a, b) h/2 with a, b odd, inside r = 0.5:
+       a^2 + b^2 < 400 at h = 0.05 (2-D); a^2 + b^2 + c^2 < 100 at h = 0.1 */
+    int c2 = 0, c3 = 0;
+    for (int a = -23; a <= 23; a += 2)
+        for (int b = -23; b <= 23; b += 2) {
+            c2 += a * a + b * b < 400;
+            for (int c = -11; c <= 11 && abs(a) <= 11 && abs(b) <= 11; c += 2) c3 += a * a + b * b + c * c < 100;
+        }
+    EXPECT(k2 == c2 && k3 == c3, "kept %d and %d cells, lattice counts %d and %d", k2, k3, c2, c3);
+    printf("  disc: %d whole cells; sphere: %d\n", k2, k3);
+    mesh_free(&g2);
+    mesh_free(&g3);
+}
+
+TEST(cut_staircase_opts)
+{
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/kiesel_test_cutCellsDict.%ld", (long)getpid());
+    FILE *f = fopen(path, "w");
+    fprintf(f, "method staircase;\n");
+    fclose(f);
+    CutOpts o;
+    Err e;
+    EXPECT(cut_read_opts(path, &o, &e) == 0 && o.method == CUT_METHOD_STAIRCASE, "method staircase not read");
+    f = fopen(path, "w");
+    fprintf(f, "\nmethod steps;\n");
+    fclose(f);
+    EXPECT(cut_read_opts(path, &o, &e) != 0, "method steps accepted");
+    CONTAINS(e.msg, ":2:");
+    CONTAINS(e.msg, "staircase");
+    cut_opts_default(&o);
+    EXPECT(o.method == CUT_METHOD_CUT, "default method is not cut");
+    remove(path);
+}
+
 int main(void)
 {
     RUN(cut_halfspace_exact);
@@ -1342,5 +1453,7 @@ int main(void)
     RUN(cut_csg_per_cell_points);
     RUN(cut_csg_touching_cap);
     RUN(cut_csg_crossing_chords);
+    RUN(cut_staircase_disc_and_sphere);
+    RUN(cut_staircase_opts);
     return test_summary();
 }
