@@ -144,7 +144,7 @@ $(B)/tests/validation/mms/%.o: tests/validation/mms/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(FVFLAGS) $(DEPFLAGS) -Itests -Itools/solveGranular -c $< -o $@
 
-$(MMS_BIN): $(MMS_OBJ) $(B)/tools/solveGranular/newtonian.o $(B)/tools/solveGranular/granular.o $(FVLIB) $(LIB) $(SAN_OBJ)
+$(MMS_BIN): $(MMS_OBJ) $(B)/tools/solveGranular/newtonian.o $(B)/tools/solveGranular/granular.o $(B)/tools/solveGranular/restprofile.o $(FVLIB) $(LIB) $(SAN_OBJ)
 	@mkdir -p $(dir $@)
 	$(CC) $(LDFLAGS) $(filter %.o,$^) $(FVLIB) $(LIB) $(LDLIBS_ALL) -o $@
 

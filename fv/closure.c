@@ -61,6 +61,7 @@
 */
 #include "closure.h"
 
+#include <float.h>
 #include <math.h>
 
 #include <gsl/gsl_errno.h>
@@ -138,6 +139,73 @@ double closure_eps(const GranCoeffs *k, double c, double T)
 double closure_sound_speed(const GranCoeffs *k, double c, double T)
 {
     return sqrt(dpdc(k, c, T, gfac(k, c)));
+}
+
+/* The rest profile (closure.h).  Above and below c0 the enthalpy is linear
+   in s(v) = v + e^v, with slopes T + B and T, so a potential difference
+   moves s by phi over the slope, with a change of slope where the profile
+   crosses c0; each case below is written as a difference from the source
+   (never as h itself), so that nothing cancels when T is small. */
+static int has_yield(const GranCoeffs *k) { return k->T0 > 0 && k->c0 < k->cmax; }
+
+static double yield_B(const GranCoeffs *k) { return k->T0 * (1 - k->c0 / k->cmax); }
+
+double closure_logit(const GranCoeffs *k, double c)
+{
+    if (c <= 0) return -INFINITY;
+    return c < k->cmax ? log(c / (k->cmax - c)) : INFINITY;
+}
+
+double closure_c_of_logit(const GranCoeffs *k, double v) { return v == -INFINITY ? 0 : k->cmax / (1 + exp(-v)); }
+
+static int above_c0(const GranCoeffs *k, double v) { return has_yield(k) && v > closure_logit(k, k->c0); }
+
+double closure_pressure_logit(const GranCoeffs *k, double v, double T)
+{
+    if (v == -INFINITY) return 0;
+    double ev = exp(v);
+    return above_c0(k, v) ? k->cmax * (T + yield_B(k)) * ev - k->T0 * k->c0 : k->cmax * T * ev;
+}
+
+double closure_logit_of_pressure(const GranCoeffs *k, double p, double T)
+{
+    if (!(p > 0)) return -INFINITY;
+    double v0 = closure_logit(k, k->c0);
+    if (has_yield(k) && p > k->cmax * T * exp(v0)) return log((p + k->T0 * k->c0) / (k->cmax * (T + yield_B(k))));
+    return T > 0 ? log(p / (k->cmax * T)) : -INFINITY;
+}
+
+double closure_dpdc_logit(const GranCoeffs *k, double v, double T)
+{
+    double g = 1 + exp(v);
+    return g * g * (above_c0(k, v) ? T + yield_B(k) : T);
+}
+
+/* The v with v + e^v = s: Newton's method (v + e^v is convex and
+   increasing, so from either side of the root the iterates converge)
+   from a start that depends on s only. */
+static double inverse_s(double s)
+{
+    if (!isfinite(s) || s < -700) return s; /* e^v below the last double */
+    double v = s > 1 ? log(s) : s - 1;
+    for (int it = 0; it < 64; it++) {
+        double ev = exp(v), dv = (v + ev - s) / (1 + ev);
+        v -= dv;
+        if (fabs(dv) <= 2 * DBL_EPSILON * (1 + fabs(v))) break;
+    }
+    return v;
+}
+
+double closure_profile_logit(const GranCoeffs *k, double v, double T, double phi)
+{
+    if (v == -INFINITY || phi == 0) return v;
+    double sv = v + exp(v), v0 = closure_logit(k, k->c0), s0 = v0 + exp(v0), A = T + yield_B(k);
+    if (above_c0(k, v)) {
+        if (phi >= -A * (sv - s0)) return inverse_s(sv + phi / A);
+        return T > 0 ? inverse_s(s0 + (A * (sv - s0) + phi) / T) : -INFINITY;
+    }
+    if (has_yield(k) && phi >= T * (s0 - sv)) return inverse_s(s0 + (phi - T * (s0 - sv)) / A);
+    return T > 0 ? inverse_s(sv + phi / T) : v;
 }
 
 /* eq. 2.24 */

@@ -51,6 +51,29 @@ double closure_eps(const GranCoeffs *k, double c, double T);
 /* sqrt(dp/dc) at fixed T. */
 double closure_sound_speed(const GranCoeffs *k, double c, double T);
 
+/* The rest profile at fixed T (doc/theory.md, "Well-balanced granular
+   gravity").  At rest grad p = c g, so the enthalpy h = int dp/c grows by
+   the potential g.dx.  In the logit v = ln(c/(c_max - c)) (so c = c_max
+   e^v/(1 + e^v), g = 1 + e^v) with s(v) = v + e^v and B = T0 (1 - c0/c_max):
+     p = c_max [(T + B) e^v - T0 c0/c_max]  above c0, c_max T e^v below,
+     h = T s(v) + B (s(v) - s(v0)) above c0 (v0 the logit of c0), T s(v)
+         below,
+   both monotone in v, so the profile through (v, T) has the logit
+   closure_profile_logit at potential difference phi: the inverse of s
+   by Newton's method from a start that depends on s only (two sources
+   whose profiles coincide give the same bits to round-off).  -INFINITY
+   is the logit of c = 0 (an empty cell's profile stays empty). */
+double closure_logit(const GranCoeffs *k, double c);
+double closure_c_of_logit(const GranCoeffs *k, double v);
+double closure_pressure_logit(const GranCoeffs *k, double v, double T);
+/* The logit of the pressure p >= 0 at temperature T > 0 (its inverse). */
+double closure_logit_of_pressure(const GranCoeffs *k, double p, double T);
+/* The logit at potential difference phi along the rest profile through
+   logit v at temperature T (T > 0, or T = 0 above c0). */
+double closure_profile_logit(const GranCoeffs *k, double v, double T, double phi);
+/* dp/dc at fixed T from the logit: (1 + e^v)^2 (T + B above c0). */
+double closure_dpdc_logit(const GranCoeffs *k, double v, double T);
+
 /* eq. 2.24: eps0 of grains of diameter d and restitution e (0 <= e <= 1);
    0 for e = 1 (elastic grains do not cool). */
 double closure_eps0_from_grain(double d, double e);

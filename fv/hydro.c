@@ -87,11 +87,13 @@ static void face_weights(Hydro *h, const Images *im)
     h->off[0] = 0;
     for (int i = 0; i < f->nfaces; i++) h->off[i + 1] = h->off[i] + stencil_row_len(s, interp_row(i, INTERP_CENTRE));
     h->w = mem_alloc(sizeof(double) * ((size_t)h->off[f->nfaces] + 1));
+    if (h->barotropic) h->phi = mem_alloc(sizeof(double) * ((size_t)h->off[f->nfaces] + 1));
     for (int i = 0; i < f->nfaces; i++) {
         int r = interp_row(i, INTERP_CENTRE), g = i >= f->ninternal ? f->cyc_face[i - f->ninternal] : -1;
         double *w = h->w + h->off[i];
         if (g >= 0 && g < i) {
             memcpy(w, h->w + h->off[g], sizeof(double) * (size_t)(h->off[i + 1] - h->off[i]));
+            if (h->phi) memcpy(h->phi + h->off[i], h->phi + h->off[g], sizeof(double) * (size_t)(h->off[i + 1] - h->off[i]));
             continue;
         }
         const double *xf = f->m->face_centre + 3 * i;
@@ -100,7 +102,12 @@ static void face_weights(Hydro *h, const Images *im)
         for (int k = 0; k < sr.n; k++) {
             double p[3];
             source_at(im, f, sr.src[k], xf, p);
-            w[k] = sr.w[k] * profile(h->a, xf, p);
+            if (h->phi) {
+                w[k] = sr.w[k];
+                h->phi[h->off[i] + k] = potential(h->a, xf, p);
+            } else {
+                w[k] = sr.w[k] * profile(h->a, xf, p);
+            }
         }
     }
 }
@@ -119,6 +126,25 @@ static void gravity_vectors(Hydro *h)
         const double *xn = f->node + 3 * m->neighbour[i];
         double en = expm1(potential(h->a, xf, xn));
         for (int k = 0; k < 3; k++) h->grav[3 * m->neighbour[i] + k] -= en * S[k];
+    }
+}
+
+/* The potentials of every face seen from its two cells, and each cell's
+   largest (barotropic profiles). */
+static void face_potentials(Hydro *h)
+{
+    const FvMesh *f = h->f;
+    const Mesh *m = f->m;
+    h->gphi = mem_calloc(2 * ((size_t)f->nfaces + 1), sizeof(double));
+    h->reach = mem_calloc((size_t)f->ncells + 1, sizeof(double));
+    for (int i = 0; i < f->nfaces; i++) {
+        const double *xf = m->face_centre + 3 * i;
+        int o = m->owner[i], n = i < f->ninternal ? m->neighbour[i] : -1;
+        h->gphi[2 * i] = potential(h->a, xf, f->node + 3 * o);
+        if (n >= 0) h->gphi[2 * i + 1] = potential(h->a, xf, f->node + 3 * n);
+        if (f->empty_face[i]) continue;
+        h->reach[o] = fmax(h->reach[o], fabs(h->gphi[2 * i]));
+        if (n >= 0) h->reach[n] = fmax(h->reach[n], fabs(h->gphi[2 * i + 1]));
     }
 }
 
@@ -175,7 +201,7 @@ static int equipotential(int n, const double *psi, double phi, double *c)
 
 /* The row of boundary face b: its owner's neighbourhood at the face's
    potential, each node carried to the face along its profile. */
-static void wall_row(Hydro *h, int b)
+static void wall_row(Hydro *h, int b, size_t *wcap)
 {
     const FvMesh *f = h->f;
     int i = f->ninternal + b, P = f->m->owner[i], cell[HYDRO_MAXNB], n = 1;
@@ -190,25 +216,47 @@ static void wall_row(Hydro *h, int b)
         if (equipotential(m, psi, phi, c)) n = m;
         else c[0] = 1;
     }
-    for (int j = 0; j < n; j++) stencil_add(&h->wall, cell[j], c[j] * profile(a, xb, x[j]));
+    for (int j = 0; j < n; j++) {
+        if (!h->barotropic) {
+            stencil_add(&h->wall, cell[j], c[j] * profile(a, xb, x[j]));
+            continue;
+        }
+        int at = h->wall.off[h->wall.nrows + 1]; /* the cells are distinct: each adds an entry */
+        stencil_add(&h->wall, cell[j], c[j]);
+        mem_grow((void **)&h->wphi, wcap, (size_t)at + 1, sizeof *h->wphi);
+        h->wphi[at] = potential(a, xb, x[j]);
+    }
     stencil_end_row(&h->wall);
 }
 
-void hydro_init(Hydro *h, const FvMesh *f, const Interp *ip, const double g[3], double RsT)
+static void init(Hydro *h, const FvMesh *f, const Interp *ip, const double a[3], int barotropic)
 {
     memset(h, 0, sizeof *h);
     h->f = f;
     h->ip = ip;
-    for (int k = 0; k < 3; k++) h->a[k] = g[k] / RsT;
+    memcpy(h->a, a, sizeof h->a);
     if (h->a[0] == 0 && h->a[1] == 0 && h->a[2] == 0) return; /* the plain rows; nothing to store */
+    h->barotropic = barotropic;
     Images im;
     images_init(&im, f);
     face_weights(h, &im);
-    gravity_vectors(h);
+    if (barotropic)
+        face_potentials(h);
+    else
+        gravity_vectors(h);
     stencil_init(&h->wall);
-    for (int b = 0; b < f->nboundary; b++) wall_row(h, b);
+    size_t wcap = 0;
+    for (int b = 0; b < f->nboundary; b++) wall_row(h, b, &wcap);
     stencil_trim(&h->wall);
 }
+
+void hydro_init(Hydro *h, const FvMesh *f, const Interp *ip, const double g[3], double RsT)
+{
+    double a[3] = {g[0] / RsT, g[1] / RsT, g[2] / RsT};
+    init(h, f, ip, a, 0);
+}
+
+void hydro_init_profile(Hydro *h, const FvMesh *f, const Interp *ip, const double g[3]) { init(h, f, ip, g, 1); }
 
 void hydro_free(Hydro *h)
 {
@@ -216,6 +264,10 @@ void hydro_free(Hydro *h)
     free(h->w);
     stencil_free(&h->wall);
     free(h->grav);
+    free(h->phi);
+    free(h->wphi);
+    free(h->gphi);
+    free(h->reach);
     memset(h, 0, sizeof *h);
 }
 
@@ -256,4 +308,66 @@ double hydro_boundary(const Hydro *h, int b, const double *pc)
 {
     if (!h->wall.off) return 0.0 + pc[h->f->m->owner[h->f->ninternal + b]]; /* the row's sum, 0 + 1 p_P */
     return stencil_apply(&h->wall, b, h->f->ncells, pc, NULL);
+}
+
+double hydro_face_profile(const Hydro *h, int i, const HydroProfile *q)
+{
+    StencilRow sr;
+    stencil_row(&h->ip->face, interp_row(i, INTERP_CENTRE), &sr);
+    double v = 0;
+    if (!h->w) { /* g = 0: the row's own weights on the sources' pressures */
+        for (int k = 0; k < sr.n; k++) v += sr.w[k] * q->at(q->ctx, sr.src[k], 0);
+        return v;
+    }
+    const double *w = h->w + h->off[i], *phi = h->phi + h->off[i];
+    for (int k = 0; k < sr.n; k++) v += w[k] * q->at(q->ctx, sr.src[k], phi[k]);
+    return v;
+}
+
+void hydro_force_profile(const Hydro *h, const HydroProfile *q, double *out)
+{
+    const FvMesh *f = h->f;
+    const Mesh *m = f->m;
+    memset(out, 0, sizeof(double) * 3 * (size_t)f->ncells);
+    for (int i = 0; i < f->nfaces; i++) {
+        if (f->empty_face[i]) continue;
+        double p = hydro_face_profile(h, i, q);
+        const double *S = m->face_area + 3 * i;
+        double *fo = out + 3 * m->owner[i];
+        for (int k = 0; k < 3; k++) fo[k] += p * S[k];
+        if (i < f->ninternal) {
+            double *fn = out + 3 * m->neighbour[i];
+            for (int k = 0; k < 3; k++) fn[k] -= p * S[k];
+        }
+    }
+}
+
+double hydro_boundary_profile(const Hydro *h, int b, const HydroProfile *q)
+{
+    int P = h->f->m->owner[h->f->ninternal + b];
+    if (!h->wall.off) return q->at(q->ctx, P, 0);
+    double v = 0;
+    for (int k = h->wall.off[b]; k < h->wall.off[b + 1]; k++) v += h->wall.w[k] * q->at(q->ctx, h->wall.src[k], h->wphi[k]);
+    return v;
+}
+
+/* Each cell's own profile over its closed surface, empty faces too, less
+   its own pressure (sum_f S_f = 0: the differences keep the sum small
+   where the profile is nearly flat). */
+void hydro_gravity_profile(const Hydro *h, const HydroProfile *q, double *grav)
+{
+    const FvMesh *f = h->f;
+    const Mesh *m = f->m;
+    memset(grav, 0, sizeof(double) * 3 * (size_t)f->ncells);
+    if (!h->gphi) return;
+    for (int i = 0; i < f->nfaces; i++) {
+        const double *S = m->face_area + 3 * i;
+        int o = m->owner[i];
+        double d = q->at(q->ctx, o, h->gphi[2 * i]) - q->at(q->ctx, o, 0);
+        for (int k = 0; k < 3; k++) grav[3 * o + k] += d * S[k];
+        if (i >= f->ninternal) continue;
+        int n = m->neighbour[i];
+        d = q->at(q->ctx, n, h->gphi[2 * i + 1]) - q->at(q->ctx, n, 0);
+        for (int k = 0; k < 3; k++) grav[3 * n + k] -= d * S[k];
+    }
 }

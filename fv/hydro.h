@@ -60,6 +60,20 @@
 ** stencil.h, counts its two), nfaces + 1 offsets, three doubles per cell
 ** and a row of the owner's neighbourhood per boundary face; none with
 ** g = 0 (about 85 bytes a cell of a 3-D block grid).
+**
+** Barotropic profiles (hydro_init_profile; model granular, doc/theory.md
+** "Well-balanced granular gravity").  Where the rest profile is not an
+** exponential, the caller evaluates it: a HydroProfile gives the pressure
+** q_s(phi) at potential difference phi = g.(x - x_s) along source s's own
+** rest profile (q_s(0) its pressure).  The rows are then stored as the
+** weights themselves and, beside each, its potential g.(x_f - x_s), and
+**   p_f = sum_s w_s q_s(g.(x_f - x_s)),
+**   p_b = sum_j c_j q_j(g.(x_b - x_j))         (the same rows c as above),
+**   F_C = sum_f (q_C(g.(x_f - x_C)) - q_C(0)) S_f,
+** with the same discrete rest state: where the profiles of all cells are
+** one profile, every source gives the same p_f and F_C = sum_f p_f S_f.
+** Memory: two doubles an entry of the CENTRE rows and of the wall rows,
+** three a face and one a cell.
 */
 #ifndef KIESEL_HYDRO_H
 #define KIESEL_HYDRO_H
@@ -80,12 +94,30 @@ typedef struct Hydro {
                           from the cells (walls, zero gradient); none (off
                           NULL) when g = 0: the owner's */
     double *grav;      /* 3 ncells: sum_f expm1(a.(x_f - x_C)) S_f; NULL
-                          when g = 0 (zero) */
+                          when g = 0 (zero) or barotropic */
+    int barotropic;    /* hydro_init_profile: w and wall hold the rows'
+                          own weights, the potentials below beside them */
+    double *phi;       /* off[nfaces]: g.(x_f - x_s) of each entry of w */
+    double *wphi;      /* the wall rows' entries' g.(x_b - x_j) */
+    double *gphi;      /* 2 nfaces: g.(x_f - x_owner), g.(x_f - x_neighbour) */
+    double *reach;     /* ncells: max |g.(x_f - x_C)| over C's faces that
+                          are not empty (how far a profile is carried) */
 } Hydro;
+
+/* A barotropic rest profile: at(ctx, s, phi) is the pressure at potential
+   difference phi along source s's profile (s < ncells a cell, else
+   boundary face s - ncells), at(ctx, s, 0) its own pressure. */
+typedef struct HydroProfile {
+    double (*at)(const void *ctx, int s, double phi);
+    const void *ctx;
+} HydroProfile;
 
 /* The weights of the grid f and the face stencils ip for gravity g and
    p = RsT rho (g = 0: today's face weights, no gravity). */
 void hydro_init(Hydro *h, const FvMesh *f, const Interp *ip, const double g[3], double RsT);
+/* The rows and potentials of f and ip for gravity g and profiles given at
+   each use (g = 0: as hydro_init with g = 0). */
+void hydro_init_profile(Hydro *h, const FvMesh *f, const Interp *ip, const double g[3]);
 void hydro_free(Hydro *h);
 
 /* p_f of face i from the cell pressures pc (ncells) and the boundary
@@ -101,5 +133,12 @@ void hydro_force(const Hydro *h, const double *pc, const double *pb, double *out
 /* The pressure of boundary face b taken from the cells (a wall, a zero
    gradient) from the cell pressures pc. */
 double hydro_boundary(const Hydro *h, int b, const double *pc);
+
+/* The same three with barotropic profiles (hydro_init_profile), and the
+   gravity force F_C into grav (3 ncells). */
+double hydro_face_profile(const Hydro *h, int i, const HydroProfile *q);
+void hydro_force_profile(const Hydro *h, const HydroProfile *q, double *out);
+double hydro_boundary_profile(const Hydro *h, int b, const HydroProfile *q);
+void hydro_gravity_profile(const Hydro *h, const HydroProfile *q, double *grav);
 
 #endif

@@ -64,6 +64,10 @@ static void alloc_model(Granular *g)
     for (size_t i = 0; i < sizeof bnd / sizeof bnd[0]; i++) *bnd[i] = mem_calloc(nb, sizeof(double));
     m->ub = mem_calloc(3 * nb, sizeof(double));
     m->jac = mem_calloc(9 * nc, sizeof(double));
+    if (g->gravity != GRAN_WELL_BALANCED) return;
+    double **prof[] = {&m->prof_v, &m->prof_p, &m->prof_theta};
+    for (size_t i = 0; i < sizeof prof / sizeof prof[0]; i++) *prof[i] = mem_calloc(nc, sizeof(double));
+    m->grav = mem_calloc(3 * nc, sizeof(double));
 }
 
 /* Sum of |S_f| over each cell's faces that are not empty (eq. 4.65). */
@@ -113,7 +117,8 @@ void granmodel_free(GranModel *m)
     if (m->M.off) fvmatrix_free(&m->M);
     if (m->bc_T.fm) bc_free(&m->bc_T);
     void *arr[] = {m->eta_c, m->lam_c, m->eps_c, m->pc, m->cfl, m->T1, m->heat, m->area, m->uk, m->eta_f, m->lam_f,
-                   m->speed_f, m->cb, m->Tb, m->etab, m->lamb, m->tb, m->ub, m->jac};
+                   m->speed_f, m->cb, m->Tb, m->etab, m->lamb, m->tb, m->ub, m->jac,
+                   m->prof_v, m->prof_p, m->prof_theta, m->grav};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
     memset(m, 0, sizeof *m);
 }

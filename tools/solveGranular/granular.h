@@ -13,8 +13,10 @@
 **              cells between whole Cartesian cells, the interpolated cell
 **              field (the face's CENTRE row) near cut cells, the boundary
 **              value eta(c_b, T_b) at boundary faces;
-**   gravity    F = c g (the cell source; the well-balanced profile of
-**              fv/hydro.h is the isothermal p = RsT rho's and is refused).
+**   gravity    F = c g (the cell source, default), or with gravitySchemes
+**              wellBalanced each cell's rest profile at its own T carried
+**              to the faces (fv/hydro.h's barotropic profiles,
+**              restprofile.c): a packing at rest stays at rest.
 ** and, after the momentum solves, the temperature equation (eq. 4.66),
 **   V (c^{m+1} T^{m+1} - (cT)^m) / dt + sum_f B((cT)^m, phi)
 **       - sum_f K_T lambda_f |S_f| dT^{m+1}/dn + eps^m c^{m+1} T^{m+1} V
@@ -66,6 +68,12 @@ typedef struct GranModel {
     double *tb;            /* nboundary: scratch (a component, a state) */
     double *uk;            /* ncells: scratch (a component, c T^m) */
     double *pc;            /* ncells: the cell pressures p(c, T) */
+    double *prof_v, *prof_p, *prof_theta;   /* ncells, gravitySchemes
+                              wellBalanced only (restprofile.c): each cell's
+                              logit of c, its pressure from it, and the
+                              weight of its exact rest profile */
+    double *grav;          /* 3 ncells, wellBalanced only: the gravity force
+                              of the profiles (fv/hydro.h) */
     double *cfl;           /* ncells: c^{m+1} floored to cMin (the matrices) */
     double *T1;            /* ncells: the new temperature */
     double *heat;          /* ncells: K_T eta_C sum (J_C)_ij^2 (per volume) */
@@ -104,6 +112,12 @@ void granmodel_limit_c(struct Granular *g);
    T1 is T.  Fails (changing nothing) when the solve fails or T1 is not
    finite. */
 int granmodel_temperature(struct Granular *g, double dt, Err *e);
+/* gravitySchemes wellBalanced (restprofile.c): each cell's rest profile
+   at the current state (after granmodel_closures), and the profile of
+   source s at potential difference phi: the HydroProfile of fv/hydro.h,
+   ctx the Granular (a boundary source reads the boundary pressures xbr). */
+void granmodel_profiles(struct Granular *g);
+double granmodel_profile_at(const void *ctx, int s, double phi);
 /* The commit: T1 into the field. */
 void granmodel_commit(struct Granular *g);
 

@@ -55,10 +55,10 @@ const char *const gran_gravity_names[] = {"wellBalanced", "cellSource", NULL};
 
 const DictKey gran_gravity_keys[] = {
     {"default", "wellBalanced (model granular: cellSource)",
-     "pressure force and gravity: wellBalanced (each cell's hydrostatic profile p = RsT rho exp(g.(x - x_C)/RsT) "
-     "carried to the faces: a column at rest stays at rest to round-off on every grid) | cellSource (the "
-     "plain face pressure and rho_C g V_C: no rest state on cut and Voronoi grids); the same when g = 0; model "
-     "granular takes cellSource only (its pressure has no isothermal profile)"},
+     "pressure force and gravity: wellBalanced (each cell's hydrostatic profile carried to the faces, p = RsT rho "
+     "exp(g.(x - x_C)/RsT), model granular its rest profile at its own T: a column or packing at rest stays at "
+     "rest to round-off on every grid) | cellSource (the plain face pressure and rho_C g V_C, the thesis's: no "
+     "rest state on cut and Voronoi grids); the same when g = 0"},
     {NULL, NULL, NULL}};
 
 static int read_div(const Dict *fvschemes, TvdScheme div[3], Err *e)
@@ -102,16 +102,17 @@ int gran_read_schemes(const Dict *fvschemes, GranSchemes *sch, Err *e)
     return read_div(fvschemes, sch->div, e) || read_gravity(fvschemes, sch, e) ? -1 : 0;
 }
 
-/* Model granular's gravity: the cell source (granular.h). */
-static int granular_gravity(const GranSchemes *sch, int *scheme, Err *e)
+/* Model granular's gravity: the cell source unless wellBalanced is asked
+   for (granular.h, restprofile.c). */
+static int granular_gravity(const GranSchemes *sch, int *scheme)
 {
-    if (sch->gravity_given && sch->gravity == GRAN_WELL_BALANCED)
-        return err_set(e, sch->gravity_file, sch->gravity_line,
-                       "gravitySchemes wellBalanced needs the isothermal pressure p = RsT rho of model Newtonian; "
-                       "model granular takes cellSource");
-    *scheme = GRAN_CELL_SOURCE;
+    *scheme = sch->gravity_given ? sch->gravity : GRAN_CELL_SOURCE;
     return 0;
 }
+
+/* Does the model carry barotropic rest profiles (model granular,
+   wellBalanced)? */
+static int profiled(const Granular *g) { return g->model == MODEL_GRANULAR && g->gravity == GRAN_WELL_BALANCED; }
 
 /* Impermeable boundary faces of U: noSlip, movingWall, rotatingWallVelocity,
    slip, partialSlip, symmetryPlane (bc_kind_wall; granular.c's wall
@@ -201,10 +202,13 @@ int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProp
     g->ip = ip;
     g->pr = *pr;
     g->gravity = sch->gravity;
-    if (g->model == MODEL_GRANULAR && granular_gravity(sch, &g->gravity, e)) return -1;
+    if (g->model == MODEL_GRANULAR) granular_gravity(sch, &g->gravity);
     static const double none[3] = {0, 0, 0};
-    /* model granular: g = 0 in the weights (cell source); its RsT is unused, 1 keeps g.x/RsT defined */
-    hydro_init(&g->hy, f, ip, g->gravity == GRAN_WELL_BALANCED ? pr->g : none, g->model == MODEL_GRANULAR ? 1 : pr->RsT);
+    const double *gw = g->gravity == GRAN_WELL_BALANCED ? pr->g : none;
+    if (profiled(g))
+        hydro_init_profile(&g->hy, f, ip, gw);
+    else
+        hydro_init(&g->hy, f, ip, gw, g->model == MODEL_GRANULAR ? 1 : pr->RsT);
     g->rho = rho;
     g->U = U;
     if (bc_init(&g->bc_rho, rho, f, e)) return -1;
@@ -358,9 +362,12 @@ static void pressures(Granular *g, double *pc)
     else
         for (int c = 0; c < f->ncells; c++) pc[c] = R * g->rho->v[c];
     bc_values(&g->bc_rho, g->rho->v, g->xbr);
+    HydroProfile q = {granmodel_profile_at, g};
+    if (profiled(g)) granmodel_profiles(g);
     for (int b = 0; b < f->nboundary; b++)
         if (!f->empty_face[f->ninternal + b])
-            g->xbr[b] = owner_pressure(g, b) ? hydro_boundary(&g->hy, b, pc)
+            g->xbr[b] = owner_pressure(g, b) ? (profiled(g) ? hydro_boundary_profile(&g->hy, b, &q)
+                                                            : hydro_boundary(&g->hy, b, pc))
                         : gr                 ? granmodel_boundary_pressure(g, b)
                                              : R * g->xbr[b];
 }
@@ -390,7 +397,13 @@ static void explicit_terms(Granular *g, double dt)
         for (int k = 0; k < 3; k++) g->mom[3 * c + k] = V * g->mom[3 * c + k] / dt - conv[3 * c + k];
     }
     pressures(g, g->x);
-    hydro_force(&g->hy, g->x, g->xbr, g->force);
+    if (profiled(g)) {
+        HydroProfile q = {granmodel_profile_at, g};
+        hydro_force_profile(&g->hy, &q, g->force);
+        hydro_gravity_profile(&g->hy, &q, g->gm.grav);
+    } else {
+        hydro_force(&g->hy, g->x, g->xbr, g->force);
+    }
 }
 
 /* Assembles and solves component k (solver j) into mom's component k.  The matrix is
@@ -422,6 +435,7 @@ static int solve_component(Granular *g, int j, double dt, Err *e)
     for (int c = 0; c < M->nrows; c++) {
         double V = f->m->cell_vol[c], rho = g->rho->v[c];
         double F = g->gravity == GRAN_CELL_SOURCE ? rho * g->pr.g[k] * V
+                   : gr                           ? g->gm.grav[3 * c + k] /* restprofile.c */
                    : g->hy.grav                   ? g->pr.RsT * rho * g->hy.grav[3 * c + k] /* fv/hydro.h */
                                                   : 0;
         M->rhs[c] += g->mom[3 * c + k] - g->force[3 * c + k] + F;
@@ -525,11 +539,14 @@ void gran_pressure(Granular *g, Field *p)
     const FvMesh *f = g->f;
     if (g->model == MODEL_GRANULAR) granmodel_closures(g);
     pressures(g, p->v);
+    HydroProfile hq = {granmodel_profile_at, g};
     for (int q = 0; q < p->npatches; q++) {
         PatchField *pf = &p->pf[q];
         if (!pf->value) continue;
         int start = f->m->patches[q].start;
         for (int j = 0; j < pf->n; j++)
-            pf->value[j] = f->empty_face[start + j] ? 0 : hydro_face(&g->hy, start + j, p->v, g->xbr);
+            pf->value[j] = f->empty_face[start + j] ? 0
+                           : profiled(g)          ? hydro_face_profile(&g->hy, start + j, &hq)
+                                                  : hydro_face(&g->hy, start + j, p->v, g->xbr);
     }
 }
