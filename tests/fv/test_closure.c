@@ -4,7 +4,9 @@
 ** the thesis's multiplicative forms, the limits c -> 0 and T -> 0, the
 ** kink at c0, dp/dc against finite differences, eq. 2.24-2.25, and the
 ** homogeneous cooling: the GSL ODE against the closed forms and against
-** t = integral of dT/(eps T) by GSL quadrature (code the ODE does not use).
+** t = integral of dT/(eps T) by GSL quadrature (code the ODE does not use);
+** the rest profiles of the well-balanced gravity against the enthalpy
+** integral of dp/c by GSL quadrature.
 */
 #include "closure.h"
 #include "test.h"
@@ -356,6 +358,96 @@ TEST(cooling_errors)
     EXPECT(T == 7, "T written on failure: %g", T);
 }
 
+/* The logit and the pressure through it against closure_pressure, and the
+   pressure's inverse (relative 1e-13). */
+TEST(logit)
+{
+    const GranCoeffs *ks[] = {&HAND, &S522, &S532};
+    const double cs[] = {1e-9, 0.01, 0.2, 0.31, 0.45, 0.55, 0.62, 0.7, 0.79}, Ts[] = {1e-12, 1e-4, 0.5, 3};
+    double worst = 0;
+    for (int q = 0; q < 3; q++)
+        for (int i = 0; i < 9; i++)
+            for (int j = 0; j < 4; j++) {
+                const GranCoeffs *k = ks[q];
+                double c = cs[i] * k->cmax / 0.8, T = Ts[j], v = closure_logit(k, c), p = closure_pressure(k, c, T);
+                REL(closure_c_of_logit(k, v), c, 1e-14);
+                REL(closure_pressure_logit(k, v, T), p, 1e-13);
+                REL(closure_logit_of_pressure(k, p, T), v, 1e-13 / fmin(1, fabs(v)) + 1e-13);
+                if (fabs(c - k->c0) > 1e-3) REL(closure_dpdc_logit(k, v, T), pow(closure_sound_speed(k, c, T), 2), 1e-13);
+                worst = fmax(worst, rel(closure_pressure_logit(k, v, T), p));
+            }
+    EXPECT(closure_logit(&HAND, 0) == -INFINITY && closure_c_of_logit(&HAND, -INFINITY) == 0, "c = 0");
+    EXPECT(closure_pressure_logit(&HAND, -INFINITY, 1) == 0, "p(c = 0)");
+    printf("  logit: p through the logit against closure_pressure %.2e (relative)\n", worst);
+}
+
+/* dp/c at fixed T from c to d by GSL quadrature (split at c0, the kink). */
+static double enthalpy_gap(const GranCoeffs *k, double T, double c, double d);
+
+typedef struct { const GranCoeffs *k; double T; } HParams;
+
+static double h_integrand(double c, void *ctx)
+{
+    const HParams *h = ctx;
+    double a = closure_sound_speed(h->k, c, h->T);
+    return a * a / c;
+}
+
+static double enthalpy_gap(const GranCoeffs *k, double T, double c, double d)
+{
+    HParams hp = {k, T};
+    gsl_function F = {h_integrand, &hp};
+    gsl_integration_workspace *w = gsl_integration_workspace_alloc(200);
+    double lo = fmin(c, d), hi = fmax(c, d), sum = 0;
+    double cut[3] = {lo, k->c0, hi};
+    int n = k->c0 > lo && k->c0 < hi ? 2 : 1;
+    if (n == 1) cut[1] = hi;
+    for (int j = 0; j < n; j++) {
+        double r, err;
+        gsl_integration_qags(&F, cut[j], cut[j + 1], 0, 1e-13, 200, w, &r, &err);
+        sum += r;
+    }
+    gsl_integration_workspace_free(w);
+    return d >= c ? sum : -sum;
+}
+
+/* The rest profile: from c the enthalpy integral dp/c up to the profile's
+   c at potential phi equals phi (GSL quadrature, relative 1e-9), also
+   across c0 both ways; profiles compose, v(v(phi1), phi2) = v(phi1 +
+   phi2) (the property that makes two sources of one rest state agree:
+   pressure relative 1e-14). */
+TEST(rest_profile)
+{
+    struct { const GranCoeffs *k; double c, T; } cs[] = {{&S532, 0.5, 0.01},  {&S532, 0.2, 0.5},  {&HAND, 0.6, 0.1},
+                                                          {&HAND, 0.45, 0.02}, {&S522, 0.3, 0.3},  {&S532, 0.62, 1e-12},
+                                                          {&HAND, 0.3, 1e-6}};
+    const double phis[] = {-1, -0.3, -0.05, -1e-4, 1e-4, 0.05, 0.3, 1};
+    double worst = 0, worst_comp = 0;
+    int crossed = 0;
+    gsl_error_handler_t *old = gsl_set_error_handler_off();
+    for (int q = 0; q < 7; q++)
+        for (int j = 0; j < 8; j++) {
+            const GranCoeffs *k = cs[q].k;
+            double c = cs[q].c, T = cs[q].T, phi = phis[j] * (T < 1e-3 && c < k->c0 ? T : 1), v = closure_logit(k, c);
+            double vf = closure_profile_logit(k, v, T, phi), cf = closure_c_of_logit(k, vf);
+            if (cf < 1e-6 || cf > k->cmax * (1 - 1e-9)) continue; /* beyond quadrature's reach */
+            crossed += (c - k->c0) * (cf - k->c0) < 0;
+            double gap = enthalpy_gap(k, T, c, cf);
+            double tol = 1e-9 + 4e-16 * c / fabs(cf - c); /* c's last bits against the step in c */
+            EXPECT(rel(gap, phi) <= tol, "set %d phi %g: integral %.17g (c %g -> %g)", q, phi, gap, c, cf);
+            if (fabs(cf - c) > 1e-5) worst = fmax(worst, rel(gap, phi));
+            double v2 = closure_profile_logit(k, closure_profile_logit(k, v, T, 0.4 * phi), T, 0.6 * phi);
+            double pa = closure_pressure_logit(k, v2, T), pb = closure_pressure_logit(k, vf, T);
+            EXPECT(rel(pa, pb) <= 1e-14 + 1e-15 * fabs(phi) * c / fmax(pb, 1e-300), "set %d phi %g: composed %.17g, direct %.17g", q, phi, pa, pb);
+            worst_comp = fmax(worst_comp, rel(pa, pb));
+        }
+    gsl_set_error_handler(old);
+    EXPECT(crossed >= 4, "only %d profiles cross c0", crossed);
+    EXPECT(closure_profile_logit(&S532, -INFINITY, 1, 0.5) == -INFINITY, "an empty cell's profile filled");
+    printf("  rest_profile: enthalpy integral against phi %.2e (relative, |dc| > 1e-5), composition %.2e, %d across c0\n", worst,
+           worst_comp, crossed);
+}
+
 int main(void)
 {
     RUN(values_kinetic);
@@ -370,5 +462,7 @@ int main(void)
     RUN(cooling_kinetic);
     RUN(cooling_yield);
     RUN(cooling_errors);
+    RUN(logit);
+    RUN(rest_profile);
     return test_summary();
 }

@@ -13,7 +13,9 @@
 ** with gravity along the period.  Measured: the gravity vector against
 ** rho g V (second order on block grids), and the boundary pressures of a
 ** uniform p (the inclined channel's state: second order with the
-** neighbourhood rule, first order with the owner's profile alone).
+** neighbourhood rule, first order with the owner's profile alone).  The
+** barotropic rows (hydro_init_profile) given the isothermal profile are
+** the isothermal scheme, off a rest state, on every grid above.
 */
 #include "fixture.h"
 #include "fvc.h"
@@ -357,6 +359,92 @@ TEST(uniform_pressure_at_walls)
     EXPECT(e[1] < 0.2 * p[1], "neighbourhood %.3e against the owner's profile %.3e", e[1], p[1]);
 }
 
+/* The isothermal profile as a barotropic one: q_s(phi) = p_s exp(phi/RsT). */
+typedef struct IsoCtx {
+    int nc;
+    const double *pc, *pb;
+} IsoCtx;
+
+static double iso_at(const void *ctx, int s, double phi)
+{
+    const IsoCtx *c = ctx;
+    double p = s < c->nc ? c->pc[s] : c->pb[s - c->nc];
+    return phi == 0 ? p : p * exp(phi / RST);
+}
+
+/* hydro_init_profile with the isothermal profile gives the isothermal
+   scheme's boundary and face pressures, force and gravity (relative to
+   the largest, 1e-13) on a state that is not at rest. */
+static void check_barotropic(const char *name, Mesh *m, int method, const double g[3])
+{
+    Setup s, t;
+    setup(&s, m, method, g);
+    setup(&t, m, method, g);
+    hydro_free(&t.h);
+    hydro_init_profile(&t.h, &t.f, &t.ip, g);
+    const FvMesh *f = &s.f;
+    int nc = f->ncells, nb = f->nboundary;
+    double *pc = mem_alloc(sizeof(double) * (size_t)(nc + 1)), *pb = mem_alloc(sizeof(double) * (size_t)(nb + 1));
+    double *pb2 = mem_alloc(sizeof(double) * (size_t)(nb + 1));
+    double *F1 = mem_alloc(sizeof(double) * 3 * (size_t)(nc + 1)), *F2 = mem_alloc(sizeof(double) * 3 * (size_t)(nc + 1));
+    double *G2 = mem_alloc(sizeof(double) * 3 * (size_t)(nc + 1));
+    for (int c = 0; c < nc; c++) {
+        const double *x = f->node + 3 * c;
+        pc[c] = RST * (1 + 0.3 * sin(5 * x[0] + 3 * x[1] + 2 * x[2]));
+    }
+    for (int b = 0; b < nb; b++) pb[b] = hydro_boundary(&s.h, b, pc);
+    IsoCtx ctx = {nc, pc, pb2};
+    HydroProfile q = {iso_at, &ctx};
+    for (int b = 0; b < nb; b++) pb2[b] = hydro_boundary_profile(&t.h, b, &q);
+    double pmax = 0, dp = 0, db = 0, df = 0, dg = 0, fmax_ = 0;
+    for (int b = 0; b < nb; b++) db = fmax(db, fabs(pb2[b] - pb[b]));
+    for (int i = 0; i < f->nfaces; i++) {
+        if (f->empty_face[i]) continue;
+        double a = hydro_face(&s.h, i, pc, pb), b = hydro_face_profile(&t.h, i, &q);
+        pmax = fmax(pmax, fabs(a));
+        dp = fmax(dp, fabs(a - b));
+    }
+    hydro_force(&s.h, pc, pb, F1);
+    hydro_force_profile(&t.h, &q, F2);
+    hydro_gravity_profile(&t.h, &q, G2);
+    for (int c = 0; c < nc; c++)
+        for (int k = 0; k < 3; k++) {
+            double G1 = pc[c] * s.h.grav[3 * c + k]; /* RsT rho_C grav_C */
+            fmax_ = fmax(fmax_, fmax(fabs(F1[3 * c + k]), fabs(G1)));
+            df = fmax(df, fabs(F1[3 * c + k] - F2[3 * c + k]));
+            dg = fmax(dg, fabs(G1 - G2[3 * c + k]));
+        }
+    EXPECT(db <= 1e-13 * pmax && dp <= 1e-13 * pmax, "%s: boundary %.2e, faces %.2e of %.3g", name, db, dp, pmax);
+    EXPECT(df <= 1e-13 * fmax_ && dg <= 1e-13 * fmax_, "%s: force %.2e, gravity %.2e of %.3g", name, df, dg, fmax_);
+    printf("  barotropic %s: boundary %.1e, faces %.1e (of %.2g), force %.1e, gravity %.1e (of %.2g)\n", name, db, dp,
+           pmax, df, dg, fmax_);
+    void *arr[] = {pc, pb, pb2, F1, F2, G2};
+    for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
+    teardown(&s);
+    teardown(&t);
+}
+
+TEST(barotropic_isothermal)
+{
+    Mesh m, grid;
+    rotbox(&m, 16, 0);
+    check_barotropic("rotated box cut, shepard", &m, INTERP_SHEPARD, G_TILT);
+    check_barotropic("rotated box cut, multilinear", &m, INTERP_MULTILINEAR, G_TILT);
+    mesh_free(&m);
+    rotbox(&m, 16, 1);
+    check_barotropic("rotated box Voronoi", &m, INTERP_SHEPARD, G_TILT);
+    mesh_free(&m);
+    block(&grid, 8, 1, 0);
+    fixture_cut(&m, &grid, SPHERE, 1, NULL);
+    static const double g3[3] = {1.5, -9.81, 3.0}, along[3] = {4, -9.81, 0};
+    check_barotropic("3-D sphere cut, multilinear", &m, INTERP_MULTILINEAR, g3);
+    mesh_free(&m);
+    mesh_free(&grid);
+    cyclic_block(&m);
+    check_barotropic("block periodic in x, gravity along the period", &m, INTERP_SHEPARD, along);
+    mesh_free(&m);
+}
+
 int main(void)
 {
     RUN(rest_state_block);
@@ -367,5 +455,6 @@ int main(void)
     RUN(zero_gravity);
     RUN(gravity_second_order);
     RUN(uniform_pressure_at_walls);
+    RUN(barotropic_isothermal);
     return test_summary();
 }

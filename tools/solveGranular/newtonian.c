@@ -341,7 +341,7 @@ double gran_mass(const Granular *g) { return fvc_total(g->f, g->rho->v); }
 
 /* Does boundary face b take its owner's pressure (a wall, or a zero
    gradient of rho)? */
-static int owner_pressure(const Granular *g, int b)
+int gran_owner_pressure(const Granular *g, int b)
 {
     return g->wall[b] || g->bc_rho.patch[g->f->face_patch[b]].kind == BC_ZERO_GRADIENT;
 }
@@ -366,7 +366,7 @@ static void pressures(Granular *g, double *pc)
     if (profiled(g)) granmodel_profiles(g);
     for (int b = 0; b < f->nboundary; b++)
         if (!f->empty_face[f->ninternal + b])
-            g->xbr[b] = owner_pressure(g, b) ? (profiled(g) ? hydro_boundary_profile(&g->hy, b, &q)
+            g->xbr[b] = gran_owner_pressure(g, b) ? (profiled(g) ? hydro_boundary_profile(&g->hy, b, &q)
                                                             : hydro_boundary(&g->hy, b, pc))
                         : gr                 ? granmodel_boundary_pressure(g, b)
                                              : R * g->xbr[b];

@@ -177,6 +177,9 @@ double gran_courant(Granular *g, double dt, double *mean);
 int gran_step(Granular *g, double dt, Err *e);
 /* Does patch q carry mass (not a wall, not empty, not cyclic)? */
 int gran_open_patch(const Granular *g, int q);
+/* Does boundary face b take its pressure from the cells (a wall, or a
+   zero gradient of rho)? */
+int gran_owner_pressure(const Granular *g, int b);
 /* Total mass sum rho V. */
 double gran_mass(const Granular *g);
 /* The derived pressure p = RsT rho, or model granular's p(c, T) (cells

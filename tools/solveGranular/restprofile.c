@@ -20,8 +20,12 @@
 ** g(c0)^2) and a hot gas are resolved on any useful grid, and keep their
 ** rest state to round-off.
 **
-** A boundary source (a wall face in a CENTRE row) carries its pressure p_b
-** along the profile of its temperature T_b with its owner's theta.
+** A boundary source (a boundary face in a CENTRE row) whose pressure is
+** its owner's (a wall, a zero gradient) is its owner's profile, from the
+** owner's node: its pressure p_b (the wall rows' combination of fv/hydro.h)
+** is that profile's value at rest, and the profile through p_b at a cold
+** T_b would name a c that is not there.  A face with a fixed c carries its
+** own state (c_b, T_b) with its owner's theta.
 */
 #include "newtonian.h"
 
@@ -45,19 +49,22 @@ void granmodel_profiles(Granular *g)
     const GranCoeffs *k = &g->pr.k;
     const double *c = g->rho->v, *T = m->T->v;
     for (int i = 0; i < g->f->ncells; i++) {
-        double v = closure_logit(k, c[i]), d = closure_dpdc_logit(k, v, T[i]);
+        double v = closure_logit(k, c[i]), r = g->hy.reach ? g->hy.reach[i] : 0;
+        /* dp/dc is smallest at the top of the reach, where c is */
+        double d = closure_dpdc_logit(k, closure_profile_logit(k, v, T[i], -r), T[i]);
         m->prof_v[i] = v;
         m->prof_p[i] = closure_pressure_logit(k, v, T[i]);
-        m->prof_theta[i] = blend(g->hy.reach ? g->hy.reach[i] / d : 0);
+        m->prof_theta[i] = blend(r > 0 ? r / d : 0);
     }
 }
 
-/* q_s(phi) from the logit v, pressure p, temperature T and weight th. */
-static double profile(const GranCoeffs *k, double v, double p, double T, double th, double phi)
+/* q_s(phi) from the logit v, pressure p, volume fraction c, temperature T
+   and weight th. */
+static double profile(const GranCoeffs *k, double v, double p, double c, double T, double th, double phi)
 {
     if (phi == 0) return p;
     double q = th > 0 ? closure_pressure_logit(k, closure_profile_logit(k, v, T, phi), T) : 0;
-    return th >= 1 ? q : th * q + (1 - th) * (p + closure_c_of_logit(k, v) * phi);
+    return th >= 1 ? q : th * q + (1 - th) * (p + c * phi);
 }
 
 double granmodel_profile_at(const void *ctx, int s, double phi)
@@ -65,9 +72,12 @@ double granmodel_profile_at(const void *ctx, int s, double phi)
     const Granular *g = ctx;
     const GranModel *m = &g->gm;
     const GranCoeffs *k = &g->pr.k;
-    int nc = g->f->ncells;
-    if (s < nc) return profile(k, m->prof_v[s], m->prof_p[s], m->T->v[s], m->prof_theta[s], phi);
-    int b = s - nc;
-    double p = g->xbr[b], T = fmax(m->Tb[b], g->pr.Tmin);
-    return profile(k, closure_logit_of_pressure(k, p, T), p, T, m->prof_theta[g->f->m->owner[g->f->ninternal + b]], phi);
+    const FvMesh *f = g->f;
+    int nc = f->ncells;
+    if (s < nc) return profile(k, m->prof_v[s], m->prof_p[s], g->rho->v[s], m->T->v[s], m->prof_theta[s], phi);
+    int b = s - nc, i = f->ninternal + b, P = f->m->owner[i];
+    if (gran_owner_pressure(g, b)) /* the owner's profile, from the owner's node */
+        return granmodel_profile_at(ctx, P, phi + (g->hy.gphi ? g->hy.gphi[2 * i] : 0));
+    double c = fmin(fmax(m->cb[b], 0), k->cmax - g->pr.dc), T = fmax(m->Tb[b], g->pr.Tmin);
+    return profile(k, closure_logit(k, c), g->xbr[b], c, T, m->prof_theta[P], phi);
 }
