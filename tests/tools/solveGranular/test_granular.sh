@@ -36,7 +36,7 @@
 #   - restart: 40 steps against 20 + a restart (binary): alpha, U, Theta
 #     and p identical;
 #   - bad input: a missing cMax, c0 >= cMax, epsilon0 with grainDiameter,
-#     wellBalanced gravity, alpha above cMax, Theta <= 0, fvSolution
+#     alpha above cMax, Theta <= 0, fvSolution
 #     without Theta, no Theta file: each an error, exit 1, nothing written.
 set -u
 . "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
@@ -247,7 +247,6 @@ bad() {   # NAME EDIT PATTERN
 bad bad_no_cmax "sed -i 's/cMax 0.64;//' constant/granularProperties" 'granularProperties.*cMax'
 bad bad_c0 "sed -i 's/c0 0.5;/c0 0.7;/' constant/granularProperties" 'granularProperties:[0-9]*: c0 must be'
 bad bad_eps_twice "sed -i 's/epsilon0 1;/epsilon0 1; grainDiameter 0.001; restitution 0.9;/' constant/granularProperties" 'either epsilon0 or grainDiameter'
-bad bad_wellbalanced "sed -i 's/interpolationSchemes/gravitySchemes { default wellBalanced; } interpolationSchemes/' system/fvSchemes" 'fvSchemes:[0-9]*: .*model granular takes cellSource'
 bad bad_alpha_high "sed -i 's/uniform 0.3;/uniform 0.7;/' 0/alpha" 'alpha = 0.7 in cell'
 bad bad_theta_zero "sed -i 's/uniform 1;/uniform 0;/' 0/Theta" 'Theta = 0 in cell'
 bad bad_no_theta_solver "sed -i 's/\"U.\\*|Theta\"/\"U.*\"/' system/fvSolution" 'Theta'
