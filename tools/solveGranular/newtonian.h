@@ -27,6 +27,9 @@
 **       kept to round-off on every grid;
 **   cellSource  p_f of the plain values and F_C = rho_C g V_C, the
 **       thesis's, which has no rest state on cut and Voronoi grids.
+** Model granular takes cellSource unless wellBalanced is given; then the
+** profiles are its rest profiles at each cell's T (restprofile.c,
+** granular.h).
 ** Both take p_f as the mean of the two cells on a face between whole
 ** Cartesian cells (eq. 4.61), the interpolated CENTRE value on the other
 ** internal faces (cyclic faces are internal faces of the periodic domain,
