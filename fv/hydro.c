@@ -321,7 +321,7 @@ double hydro_face_profile(const Hydro *h, int i, const HydroProfile *q)
     }
     const double *w = h->w + h->off[i], *phi = h->phi + h->off[i];
     for (int k = 0; k < sr.n; k++) v += w[k] * q->at(q->ctx, sr.src[k], phi[k]);
-    return v;
+    return fmax(v, 0);
 }
 
 void hydro_force_profile(const Hydro *h, const HydroProfile *q, double *out)

@@ -67,11 +67,15 @@
 ** q_s(phi) at potential difference phi = g.(x - x_s) along source s's own
 ** rest profile (q_s(0) its pressure).  The rows are then stored as the
 ** weights themselves and, beside each, its potential g.(x_f - x_s), and
-**   p_f = sum_s w_s q_s(g.(x_f - x_s)),
+**   p_f = max(0, sum_s w_s q_s(g.(x_f - x_s))),
 **   p_b = sum_j c_j q_j(g.(x_b - x_j))         (the same rows c as above),
 **   F_C = sum_f (q_C(g.(x_f - x_C)) - q_C(0)) S_f,
 ** with the same discrete rest state: where the profiles of all cells are
 ** one profile, every source gives the same p_f and F_C = sum_f p_f S_f.
+** A face pressure is never negative (a granular medium takes no tension):
+** where sources with profiles of different kinds meet at a free surface
+** (model granular's linear profiles p_s + c_s phi, negative above a
+** half-empty cell), a negative p_f would pull the grains into the vacuum.
 ** Memory: two doubles an entry of the CENTRE rows and of the wall rows,
 ** three a face and one a cell.
 */

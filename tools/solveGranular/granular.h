@@ -13,10 +13,10 @@
 **              cells between whole Cartesian cells, the interpolated cell
 **              field (the face's CENTRE row) near cut cells, the boundary
 **              value eta(c_b, T_b) at boundary faces;
-**   gravity    F = c g (the cell source, default), or with gravitySchemes
-**              wellBalanced each cell's rest profile at its own T carried
-**              to the faces (fv/hydro.h's barotropic profiles,
-**              restprofile.c): a packing at rest stays at rest.
+**   gravity    with gravitySchemes wellBalanced (the default) each cell's
+**              rest profile at its own T carried to the faces (fv/hydro.h's
+**              barotropic profiles, restprofile.c): a packing at rest
+**              stays at rest; with cellSource F = c g V, the thesis's.
 ** and, after the momentum solves, the temperature equation (eq. 4.66),
 **   V (c^{m+1} T^{m+1} - (cT)^m) / dt + sum_f B((cT)^m, phi)
 **       - sum_f K_T lambda_f |S_f| dT^{m+1}/dn + eps^m c^{m+1} T^{m+1} V
@@ -118,6 +118,9 @@ int granmodel_temperature(struct Granular *g, double dt, Err *e);
    ctx the Granular (a boundary source reads the boundary pressures xbr). */
 void granmodel_profiles(struct Granular *g);
 double granmodel_profile_at(const void *ctx, int s, double phi);
+/* The pressure of boundary face b that is its owner's (a wall, a zero
+   gradient): the owner's profile at the face. */
+double granmodel_owner_profile_pressure(const struct Granular *g, int b);
 /* The commit: T1 into the field. */
 void granmodel_commit(struct Granular *g);
 

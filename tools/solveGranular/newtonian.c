@@ -54,7 +54,7 @@ const DictKey gran_div_keys[] = {
 const char *const gran_gravity_names[] = {"wellBalanced", "cellSource", NULL};
 
 const DictKey gran_gravity_keys[] = {
-    {"default", "wellBalanced (model granular: cellSource)",
+    {"default", "wellBalanced",
      "pressure force and gravity: wellBalanced (each cell's hydrostatic profile carried to the faces, p = RsT rho "
      "exp(g.(x - x_C)/RsT), model granular its rest profile at its own T: a column or packing at rest stays at "
      "rest to round-off on every grid) | cellSource (the plain face pressure and rho_C g V_C, the thesis's: no "
@@ -85,14 +85,9 @@ static int read_div(const Dict *fvschemes, TvdScheme div[3], Err *e)
 static int read_gravity(const Dict *fvschemes, GranSchemes *sch, Err *e)
 {
     sch->gravity = GRAN_WELL_BALANCED;
-    sch->gravity_given = 0;
-    sch->gravity_file = fvschemes->file;
-    sch->gravity_line = fvschemes->line;
     const Dict *d = dict_subdict_opt(fvschemes, "gravitySchemes");
     if (!d) return 0;
     if (dict_check_keys(d, gran_gravity_keys, e)) return -1;
-    const DictEntry *en = dict_find(d, "default");
-    if (en) sch->gravity_given = 1, sch->gravity_file = en->file, sch->gravity_line = en->line;
     return dict_choice_or(d, "default", gran_gravity_names, GRAN_WELL_BALANCED, &sch->gravity, e);
 }
 
@@ -102,13 +97,6 @@ int gran_read_schemes(const Dict *fvschemes, GranSchemes *sch, Err *e)
     return read_div(fvschemes, sch->div, e) || read_gravity(fvschemes, sch, e) ? -1 : 0;
 }
 
-/* Model granular's gravity: the cell source unless wellBalanced is asked
-   for (granular.h, restprofile.c). */
-static int granular_gravity(const GranSchemes *sch, int *scheme)
-{
-    *scheme = sch->gravity_given ? sch->gravity : GRAN_CELL_SOURCE;
-    return 0;
-}
 
 /* Does the model carry barotropic rest profiles (model granular,
    wellBalanced)? */
@@ -202,7 +190,6 @@ int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProp
     g->ip = ip;
     g->pr = *pr;
     g->gravity = sch->gravity;
-    if (g->model == MODEL_GRANULAR) granular_gravity(sch, &g->gravity);
     static const double none[3] = {0, 0, 0};
     const double *gw = g->gravity == GRAN_WELL_BALANCED ? pr->g : none;
     if (profiled(g))
@@ -362,11 +349,10 @@ static void pressures(Granular *g, double *pc)
     else
         for (int c = 0; c < f->ncells; c++) pc[c] = R * g->rho->v[c];
     bc_values(&g->bc_rho, g->rho->v, g->xbr);
-    HydroProfile q = {granmodel_profile_at, g};
     if (profiled(g)) granmodel_profiles(g);
     for (int b = 0; b < f->nboundary; b++)
         if (!f->empty_face[f->ninternal + b])
-            g->xbr[b] = gran_owner_pressure(g, b) ? (profiled(g) ? hydro_boundary_profile(&g->hy, b, &q)
+            g->xbr[b] = gran_owner_pressure(g, b) ? (profiled(g) ? granmodel_owner_profile_pressure(g, b)
                                                             : hydro_boundary(&g->hy, b, pc))
                         : gr                 ? granmodel_boundary_pressure(g, b)
                                              : R * g->xbr[b];

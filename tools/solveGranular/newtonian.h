@@ -27,9 +27,8 @@
 **       kept to round-off on every grid;
 **   cellSource  p_f of the plain values and F_C = rho_C g V_C, the
 **       thesis's, which has no rest state on cut and Voronoi grids.
-** Model granular takes cellSource unless wellBalanced is given; then the
-** profiles are its rest profiles at each cell's T (restprofile.c,
-** granular.h).
+** Model granular's profiles are its rest profiles at each cell's T
+** (restprofile.c, granular.h).
 ** Both take p_f as the mean of the two cells on a face between whole
 ** Cartesian cells (eq. 4.61), the interpolated CENTRE value on the other
 ** internal faces (cyclic faces are internal faces of the periodic domain,
@@ -81,9 +80,6 @@ typedef struct GranSchemes {
     TvdScheme div[3];      /* divSchemes' div(phi,rho), div(phi,U) and
                               div(phi,Theta) (model granular: of c T) */
     int gravity;           /* gravitySchemes: GRAN_WELL_BALANCED, ... */
-    int gravity_given;     /* gravitySchemes' default was in the file */
-    const char *gravity_file;   /* where (messages) */
-    int gravity_line;
 } GranSchemes;
 
 /* A source hook: fn fills, for each of the f->ncells cells c, rho_src[c]

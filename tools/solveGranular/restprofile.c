@@ -20,11 +20,14 @@
 ** g(c0)^2) and a hot gas are resolved on any useful grid, and keep their
 ** rest state to round-off.
 **
-** A boundary source (a boundary face in a CENTRE row) whose pressure is
-** its owner's (a wall, a zero gradient) is its owner's profile, from the
-** owner's node: its pressure p_b (the wall rows' combination of fv/hydro.h)
-** is that profile's value at rest, and the profile through p_b at a cold
-** T_b would name a c that is not there.  A face with a fixed c carries its
+** A boundary face whose pressure is its owner's (a wall, a zero gradient)
+** takes its owner's profile, p_b = q_P(g.(x_b - x_P)), and as a source of
+** a CENTRE row carries it on: q_P(phi + g.(x_b - x_P)).  Not fv/hydro.h's
+** least-squares wall rows: at a free surface they combine the profiles of
+** packed and empty neighbours with weights of both signs (measured in
+** doc/validation.md: the collapse's near-vacuum speeds grow tenfold with
+** them), and the profile through such a p_b at a cold T_b would name a c
+** that is not there.  A face with a fixed c carries its
 ** own state (c_b, T_b) with its owner's theta.
 */
 #include "newtonian.h"
@@ -80,4 +83,10 @@ double granmodel_profile_at(const void *ctx, int s, double phi)
         return granmodel_profile_at(ctx, P, phi + (g->hy.gphi ? g->hy.gphi[2 * i] : 0));
     double c = fmin(fmax(m->cb[b], 0), k->cmax - g->pr.dc), T = fmax(m->Tb[b], g->pr.Tmin);
     return profile(k, closure_logit(k, c), g->xbr[b], c, T, m->prof_theta[P], phi);
+}
+
+double granmodel_owner_profile_pressure(const Granular *g, int b)
+{
+    int i = g->f->ninternal + b;
+    return granmodel_profile_at(g, g->f->m->owner[i], g->hy.gphi ? g->hy.gphi[2 * i] : 0);
 }

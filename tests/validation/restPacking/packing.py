@@ -19,6 +19,9 @@ and END for both schemes, with orders for cellSource, and the largest
 relative mass change; PASS per run when mass is kept to 1e-12, PASS per
 grid kind when wellBalanced keeps max|U| <= 1e-15 at every N, and when
 cellSource does not (its creep is > 1e-8: the check can fail both ways).
+Then a collapse under a free surface (collapse()): PASS when wellBalanced
+leaves the grains (c > 1e-3) slower than cellSource and below 1e-4 m/s,
+and with less kinetic energy.
 """
 import math, os, shutil, subprocess, sys
 
@@ -52,7 +55,9 @@ def rest_c(y):
 def write(path, text):
     with open(path, 'w') as f: f.write(text)
 
-def case(d, n, kind, scheme):
+def case(d, n, kind, scheme, end=None, T=TMIN, init=None):
+    end = end or END
+    init = init or (lambda x: rest_c(x[1]))
     shutil.rmtree(d, ignore_errors=True)
     for s in ('system', 'constant', '0'): os.makedirs(os.path.join(d, s))
     write(d + '/system/blockGridDict', H('blockGridDict') +
@@ -65,7 +70,7 @@ def case(d, n, kind, scheme):
     write(d + '/system/controlDict', H('controlDict') +
           'application solveGranular; startFrom startTime; startTime 0; stopAt endTime; endTime %.17g; deltaT 1e-5;\n'
           'writeControl adjustableRunTime; writeInterval %.17g; writeFormat ascii; writePrecision 17;\n'
-          'adjustTimeStep yes; maxCo 0.25; writeVTK no;\n' % (END, END / 2))
+          'adjustTimeStep yes; maxCo 0.25; writeVTK no;\n' % (end, end / 2))
     write(d + '/system/fvSchemes', H('fvSchemes') + 'divSchemes { default Gauss upwind; } '
           'interpolationSchemes { default shepard; } gravitySchemes { default %s; }\n' % scheme)
     write(d + '/system/fvSolution', H('fvSolution') +
@@ -75,7 +80,7 @@ def case(d, n, kind, scheme):
           'Tmin %g; }\n' % TMIN)
     write(d + '/constant/g', H('g', 'uniformDimensionedVectorField') + 'dimensions [0 1 -2 0 0 0 0]; value (0 -9.81 0);\n')
     write(d + '/0/Theta', H('Theta', 'volScalarField') + 'dimensions [0 2 -2 0 0 0 0]; internalField uniform %g;\n'
-          'boundaryField { ".*" { type zeroGradient; } frontAndBack { type empty; } }\n' % TMIN)
+          'boundaryField { ".*" { type zeroGradient; } frontAndBack { type empty; } }\n' % T)
     write(d + '/0/U', H('U', 'volVectorField') + 'dimensions [0 1 -1 0 0 0 0]; internalField uniform (0 0 0);\n'
           'boundaryField { ".*" { type noSlip; } frontAndBack { type empty; } }\n')
     tools = [['blockGrid'], ['voronoiGrid']] if kind == 'voronoi' else [['blockGrid'], ['cutCells'], ['mergeCells']]
@@ -84,7 +89,7 @@ def case(d, n, kind, scheme):
         if r.returncode: sys.exit('%s failed: %s' % (t[0], r.stderr))
     X = rest.nodes(d)
     write(d + '/0/alpha', H('alpha', 'volScalarField') + 'dimensions [0 0 0 0 0 0 0];\n'
-          'internalField nonuniform List<scalar> %d\n(\n%s\n)\n;\n' % (len(X), '\n'.join('%.17g' % rest_c(x[1]) for x in X)) +
+          'internalField nonuniform List<scalar> %d\n(\n%s\n)\n;\n' % (len(X), '\n'.join('%.17g' % init(x) for x in X)) +
           'boundaryField { ".*" { type zeroGradient; } frontAndBack { type empty; } }\n')
     return len(X)
 
@@ -104,6 +109,19 @@ def run(n, kind, scheme):
         U = ch.field(os.path.join(tdir(d, t), 'U'), nc)
         um.append(max(math.sqrt(sum(x * x for x in u)) for u in U))
     return nc, steps, um, dm
+
+def collapse(scheme, n=32, end=0.5):
+    """Half the box filled with c = 0.58 (y < 0.5), vacuum above, T = 1e-4:
+    the packing settles under a free surface.  max|U| over all cells, over
+    the cells with c > 1e-3, and the kinetic energy sum c |U|^2 at end."""
+    d = os.path.join(WORK, 'collapse_%s' % scheme)
+    nc = case(d, n, 'cut', scheme, end, 1e-4, lambda x: 0.58 if x[1] < 0.5 else 0.0)
+    r = subprocess.run([os.path.join(BIN, 'solveGranular'), '-case', d], capture_output=True, text=True)
+    if r.returncode: sys.exit('solveGranular failed (%s): %s' % (d, r.stderr))
+    U = ch.field(os.path.join(tdir(d, end), 'U'), nc)
+    c = [x[0] for x in ch.field(os.path.join(tdir(d, end), 'alpha'), nc)]
+    sp = [math.sqrt(sum(x * x for x in u)) for u in U]
+    return max(sp), max(sp[i] for i in range(nc) if c[i] > 1e-3), sum(c[i] * sp[i] ** 2 for i in range(nc))
 
 def main():
     fails = 0
@@ -128,6 +146,15 @@ def main():
                                ('creep_cellSource_' + kind, cs_ok, 'max|U| > 1e-8 at every N')):
             fails += not ok
             print('%s %s%s' % ('PASS' if ok else 'FAIL', name, '' if ok else ': not ' + what))
+    res = {s: collapse(s) for s in ('wellBalanced', 'cellSource')}
+    print('collapse under a free surface (cut, N = 32, t = 0.5):')
+    print('| scheme | max\\|U\\| | max\\|U\\| (c > 1e-3) | sum c\\|U\\|^2 |')
+    print('|---|---|---|---|')
+    for s_, (a, b, ke) in res.items(): print('| %s | %.3e | %.3e | %.3e |' % (s_, a, b, ke))
+    w, c_ = res['wellBalanced'], res['cellSource']
+    ok = w[1] <= c_[1] and w[2] <= c_[2] and w[1] <= 1e-4
+    fails += not ok
+    print('%s collapse_wellBalanced%s' % ('PASS' if ok else 'FAIL', '' if ok else ': the grains move faster than with cellSource, or > 1e-4'))
     return 1 if fails else 0
 
 if __name__ == '__main__':
