@@ -5,7 +5,11 @@ grid (cutCells method staircase), errors of the volume fraction c against
 a finer cut-cell reference.
 
     disc.py BIN WORK TUTORIAL [--levels 25,50,100,200] [--ref 400]
-            [--end 3] [--plot N] [--quick]
+            [--end 3] [--plot N] [--timeout S] [--quick]
+
+--timeout: seconds per solver run (1800); a run that does not reach the
+end time stops the study with the time and dt it reached (the staircase
+at h = 1/50 piles grains to cMax in its corners and its dt collapses).
 
 The cases are tutorials/granular/rotatingDisc's (disc of radius 0.5, c =
 0.4 at rest, rim at 0.5 m/s by rotatingWallVelocity, T frozen at 1e-5,
@@ -42,11 +46,23 @@ BOX = 0.52
 DZ = 0.02  # the grid's thickness (z in [-0.01, 0.01])
 
 
-def run(cmd, case, log):
+TIMEOUT = None  # seconds per solver run (--timeout): a staircase run whose dt collapses is stopped
+
+
+def run(cmd, case, log, timeout=None):
+    """Runs cmd on case; False when it ran out of time (the state is then
+    what the solver writes on SIGTERM)."""
     with open(os.path.join(case, log), "w") as f:
-        rc = subprocess.call(cmd + ["-case", case], stdout=f, stderr=subprocess.STDOUT)
+        pr = subprocess.Popen(cmd + ["-case", case], stdout=f, stderr=subprocess.STDOUT)
+        try:
+            rc = pr.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            pr.terminate()
+            pr.wait()
+            return False
     if rc:
         sys.exit("disc.py: %s failed in %s (see %s)" % (cmd[0], case, log))
+    return True
 
 
 def header(obj, loc="system"):
@@ -87,9 +103,13 @@ def solve(bin_, tut, work, n, method, end):
     if method == "cut":
         run([os.path.join(bin_, "mergeCells")], case, "log.mergeCells")
     t0 = time.time()
-    run([os.path.join(bin_, "solveGranular")], case, "log.solveGranular")
+    done = run([os.path.join(bin_, "solveGranular")], case, "log.solveGranular", TIMEOUT)
     wall = time.time() - t0
     log = open(os.path.join(case, "log.solveGranular")).read()
+    if not done:
+        t = re.findall(r"^Time = ([-0-9.eE+]+)", log, re.M)
+        sys.exit("disc.py: solveGranular did not reach t = %g in %.0f s in %s (at t = %s, dt %s): see its log"
+                 % (end, wall, case, t[-1] if t else "?", (re.findall(r"^deltaT = (\S+)", log, re.M) or ["?"])[-1]))
     steps = len(re.findall(r"^Time = ", log, re.M))
     mass = [float(x) for x in re.findall(r"change since start = ([-0-9.eE+]+)", log)]
     return case, wall, steps, max(abs(m) for m in mass) if mass else float("nan")
@@ -236,13 +256,15 @@ def row_profile(case, t, n, path):
 def main():
     args = sys.argv[1:]
     bin_, work, tut = args[:3]
-    opt = {"--levels": "25,50,100,200", "--ref": "400", "--end": "3", "--plot": "50"}
+    global TIMEOUT
+    opt = {"--levels": "25,50,100,200", "--ref": "400", "--end": "3", "--plot": "50", "--timeout": "1800"}
     quick = "--quick" in args
     for k in opt:
         if k in args:
             opt[k] = args[args.index(k) + 1]
     levels = [int(x) for x in opt["--levels"].split(",")]
     nref_h, end = int(opt["--ref"]), float(opt["--end"])
+    TIMEOUT = float(opt["--timeout"])
     os.makedirs(work, exist_ok=True)
     cells = lambda hinv: int(round(2 * BOX * hinv))
     tname = "%g" % end
