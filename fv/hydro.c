@@ -286,21 +286,24 @@ double hydro_face(const Hydro *h, int i, const double *pc, const double *pb)
     return v;
 }
 
+/* p S_f of face i onto its owner, minus onto its neighbour (outward). */
+static void add_face_force(const FvMesh *f, int i, double p, double *out)
+{
+    const double *S = f->m->face_area + 3 * i;
+    double *fo = out + 3 * f->m->owner[i];
+    for (int k = 0; k < 3; k++) fo[k] += p * S[k];
+    if (i >= f->ninternal) return;
+    double *fn = out + 3 * f->m->neighbour[i];
+    for (int k = 0; k < 3; k++) fn[k] -= p * S[k];
+}
+
 void hydro_force(const Hydro *h, const double *pc, const double *pb, double *out)
 {
     const FvMesh *f = h->f;
-    const Mesh *m = f->m;
     memset(out, 0, sizeof(double) * 3 * (size_t)f->ncells);
     for (int i = 0; i < f->nfaces; i++) {
         if (f->empty_face[i]) continue;
-        double p = hydro_face(h, i, pc, pb);
-        const double *S = m->face_area + 3 * i;
-        double *fo = out + 3 * m->owner[i];
-        for (int k = 0; k < 3; k++) fo[k] += p * S[k];
-        if (i < f->ninternal) {
-            double *fn = out + 3 * m->neighbour[i];
-            for (int k = 0; k < 3; k++) fn[k] -= p * S[k];
-        }
+        add_face_force(f, i, hydro_face(h, i, pc, pb), out);
     }
 }
 
@@ -327,18 +330,10 @@ double hydro_face_profile(const Hydro *h, int i, const HydroProfile *q)
 void hydro_force_profile(const Hydro *h, const HydroProfile *q, double *out)
 {
     const FvMesh *f = h->f;
-    const Mesh *m = f->m;
     memset(out, 0, sizeof(double) * 3 * (size_t)f->ncells);
     for (int i = 0; i < f->nfaces; i++) {
         if (f->empty_face[i]) continue;
-        double p = hydro_face_profile(h, i, q);
-        const double *S = m->face_area + 3 * i;
-        double *fo = out + 3 * m->owner[i];
-        for (int k = 0; k < 3; k++) fo[k] += p * S[k];
-        if (i < f->ninternal) {
-            double *fn = out + 3 * m->neighbour[i];
-            for (int k = 0; k < 3; k++) fn[k] -= p * S[k];
-        }
+        add_face_force(f, i, hydro_face_profile(h, i, q), out);
     }
 }
 
