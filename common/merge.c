@@ -94,6 +94,7 @@ void merge_opts_default(MergeOpts *o)
     o->criterion = MERGE_NORMAL;
     o->max_iter = 10;
     o->max_skewness = QUALITY_SKEW_HIGH;
+    o->min_ratio = 0.01;
 }
 
 const DictKey merge_keys[] = {
@@ -101,6 +102,7 @@ const DictKey merge_keys[] = {
     {"criterion", "normal", "merge axis: normal = argmax |n_i|, normalSpacing = argmax |n_i h_i|"},
     {"maxIter", "10", "rounds of re-merging clusters still below the bound, and of the quality pass (>= 0)"},
     {"maxSkewness", "4", "quality pass: clusters with a face skewness above this merge further (0 = off, >= 0)"},
+    {"minRatio", "0.01", "a cell below this V / V_cart that no checkMesh-clean union takes merges into a sound one (0 = never, < threshold)"},
     {NULL, NULL, NULL}};
 
 const char *const merge_criteria[] = {"normal", "normalSpacing", NULL};
@@ -123,6 +125,10 @@ static int check_opts(const MergeOpts *o, const char *path, const Dict *d, Err *
         snprintf(msg, sizeof msg, "maxIter must be >= 0, found %d", o->max_iter);
         return bad_value(e, path, d, "maxIter", msg);
     }
+    if (!(o->min_ratio >= 0 && o->min_ratio < o->threshold)) {
+        snprintf(msg, sizeof msg, "minRatio must be in [0, threshold), found %g", o->min_ratio);
+        return bad_value(e, path, d, "minRatio", msg);
+    }
     if (!(o->max_skewness >= 0)) {
         snprintf(msg, sizeof msg, "maxSkewness must be >= 0, found %g", o->max_skewness);
         return bad_value(e, path, d, "maxSkewness", msg);
@@ -138,7 +144,8 @@ int merge_read_opts(const char *path, MergeOpts *o, Err *e)
              dict_scalar_or(d, "threshold", o->threshold, &o->threshold, e) ||
              dict_choice_or(d, "criterion", merge_criteria, o->criterion, &o->criterion, e) ||
              dict_label_or(d, "maxIter", o->max_iter, &o->max_iter, e) ||
-             dict_scalar_or(d, "maxSkewness", o->max_skewness, &o->max_skewness, e) || check_opts(o, path, d, e);
+             dict_scalar_or(d, "maxSkewness", o->max_skewness, &o->max_skewness, e) ||
+             dict_scalar_or(d, "minRatio", o->min_ratio, &o->min_ratio, e) || check_opts(o, path, d, e);
     dict_free(d);
     return rc ? -1 : 0;
 }
@@ -195,6 +202,8 @@ typedef struct Work {
     signed char *sg;        /* and +1 where the face points out of it, -1 in */
     size_t sc_cap, sg_cap;
     int norder, order_cap;
+    const char *keep;       /* per cell, or NULL: the repair keeps sound clusters holding one */
+    int nkept;              /* unclean clusters it kept for them */
 } Work;
 
 /* The skewness a merge must stay below: maxSkewness less 1e-9 of it, so
@@ -617,12 +626,32 @@ static void candidates(Work *w, int r)
     rank(w, 1);
 }
 
-static int choose(Work *w, int r)
+static void best_triple(Work *w, int r, const int *first, int n1, int what, double stop, int bounded, Set *bs,
+                        double *best);
+
+/* The clusters cluster r merges with into *bs (r first): the first sound
+   pair in candidate order or, when no pair is sound, the sound triple of
+   r, a candidate and a neighbour of the two with the lowest maximum skew.
+   Around a chamfered 3-D edge a small piece often touches only cells
+   whose union with it puts the centre behind one of its faces, and a
+   third cell brings the centre back (24 of 29 such pieces stayed unmerged
+   in tutorials/granular/rotatedChannel3D without it).  Returns whether
+   there is one. */
+static int choose(Work *w, int r, Set *bs)
 {
     candidates(w, r);
     for (int i = 0; i < w->norder; i++)
-        if (sound_union(w, r, w->order[i])) return w->order[i];
-    return -1;
+        if (sound_union(w, r, w->order[i])) {
+            set_make(bs, 2, (int[2]){r, w->order[i]});
+            return 1;
+        }
+    int n1 = w->norder;
+    int *first = mem_alloc(sizeof(int) * ((size_t)n1 + 1));
+    memcpy(first, w->order, sizeof(int) * (size_t)n1);
+    double best = HUGE_VAL;
+    best_triple(w, r, first, n1, EV_SOUND, -1, 0, bs, &best);
+    free(first);
+    return best < HUGE_VAL;
 }
 
 typedef struct SlaveKey {
@@ -651,12 +680,12 @@ static int merge_rounds(Work *w, char *stuck)
         for (int i = 0; i < ns; i++) {
             int r = sl[i].root;
             if (find(w, r) != r || !below(w, r)) continue;   /* grown by an earlier pick */
-            int t = choose(w, r);
-            stuck[r] = t < 0;
-            if (t < 0) continue;
-            unite(w, r, t);
+            Set bs = {.n = 0};
+            stuck[r] = !choose(w, r, &bs);
+            if (stuck[r]) continue;
+            for (int k = 1; k < bs.n; k++) unite(w, bs.root[0], bs.root[k]);
             stuck[find(w, r)] = 0;
-            nmerge++;
+            nmerge += bs.n - 1;
         }
         if (!nmerge) break;
         niter++;
@@ -1091,14 +1120,40 @@ static void dissolve(Work *w, int r, CellScratch *cs)
 }
 
 /* Dissolves the clusters that are not clean; returns their number. */
+/* Whether cluster r holds a cell the repair keeps merged (w->keep). */
+static int holds_kept(const Work *w, int r)
+{
+    if (!w->keep) return 0;
+    int c = r;
+    do {
+        if (w->keep[c]) return 1;
+        c = w->next[c];
+    } while (c != r);
+    return 0;
+}
+
+/* Whether the repair dissolves cluster c: it fails a check the cut grid
+   passed, and it is not a sound cluster that keeps a cell of w->keep
+   merged. */
+static int dissolves(Work *w, int c)
+{
+    if (set_eval(w, &(Set){{c}, 1}, EV_CLEAN, HUGE_VAL) >= 0) return 0;
+    if (holds_kept(w, c) && set_eval(w, &(Set){{c}, 1}, EV_SOUND | EV_NOSKEW, HUGE_VAL) >= 0) {
+        w->nkept++;
+        return 0;
+    }
+    return 1;
+}
+
 static int repair(Work *w)
 {
     int nc = w->m->ncells, ndis = 0, again = 1;
     CellScratch cs = {0};
     while (again) {
         again = 0;
+        w->nkept = 0;
         for (int c = 0; c < nc; c++)
-            if (find(w, c) == c && w->size[c] > 1 && set_eval(w, &(Set){{c}, 1}, EV_CLEAN, HUGE_VAL) < 0) {
+            if (find(w, c) == c && w->size[c] > 1 && dissolves(w, c)) {
                 dissolve(w, c, &cs);
                 ndis++;
                 again = 1;
@@ -1126,9 +1181,11 @@ static int choose_clean(Work *w, int r, Set *bs)
     return best < HUGE_VAL;
 }
 
-/* The volume rounds again with clean unions only (see above); stuck[r]
-   as merge_rounds.  Returns the merges made. */
-static int clean_rounds(Work *w, char *stuck)
+/* The volume rounds again with clean unions only (see above), except
+   that a cell below min_ratio that no clean union takes gets a sound one
+   (choose; counted in *nforced); stuck[r] as merge_rounds.  Returns the
+   merges made. */
+static int clean_rounds(Work *w, char *stuck, int *nforced)
 {
     int nc = w->m->ncells, nmerged = 0;
     SlaveKey *sl = MEM_NEW(SlaveKey, (size_t)nc);
@@ -1142,6 +1199,10 @@ static int clean_rounds(Work *w, char *stuck)
             Set bs = {.n = 0};
             if (find(w, r) != r || !below(w, r)) continue;
             stuck[r] = !choose_clean(w, r, &bs);
+            if (stuck[r] && w->cvol[r] < w->o->min_ratio * w->vcart[w->big[r]]) {
+                stuck[r] = !choose(w, r, &bs);
+                *nforced += !stuck[r];
+            }
             if (stuck[r]) continue;
             for (int k = 1; k < bs.n; k++) unite(w, bs.root[0], bs.root[k]);
             stuck[find(w, r)] = 0;
@@ -1580,6 +1641,50 @@ static int check_input(const Mesh *in, const MergeOpts *o, Err *e)
     return 0;
 }
 
+/* The merge rounds, the quality pass and the repair, with their counts
+   in *st.  The repair restores the cut grid's cells where a cluster fails
+   a checkMesh check the cut grid passed, and the clean rounds re-merge
+   them into passing unions only; a cell that none takes stays as small as
+   it was cut (1e-6 of its Cartesian cell, say), which no explicit solver
+   survives.  So when the result has cells below min_ratio, merge_mesh
+   runs this again with those cells in w->keep: the repair then keeps any
+   sound cluster holding one (its skewness may be above maxSkewness, which
+   checkMesh reports but a solver runs with), and the clean rounds give a
+   cell below min_ratio that no clean union takes a sound one (choose). */
+static void rounds(Work *w, char *stuck, MergeStats *st)
+{
+    const MergeOpts *o = w->o;
+    int nc = w->m->ncells;
+    SlaveKey *bad = mem_alloc(sizeof(SlaveKey) * (size_t)nc);
+    st->nforced = st->nundone = st->nclean_merged = 0;
+    memset(stuck, 0, (size_t)nc);
+    st->niter = merge_rounds(w, stuck);
+    int nbad = bad_clusters(w, skew_limit(o), bad, &st->skew_max_before);
+    st->nskew_merged = skew_rounds(w, skew_limit(o), o->max_iter, bad, nbad);
+    free(bad);
+    if (o->max_skewness > 0) {
+        st->nundone = repair(w);
+        if (st->nundone) st->nclean_merged = clean_rounds(w, stuck, &st->nforced);
+        st->nforced += w->nkept;
+    }
+}
+
+/* The input cells of clusters below min_ratio after a repair that
+   dissolved something, or NULL when there are none. */
+static char *tiny_cells(Work *w)
+{
+    if (!(w->o->min_ratio > 0) || !(w->o->max_skewness > 0)) return NULL;
+    int nc = w->m->ncells, n = 0;
+    char *keep = MEM_NEW(char, (size_t)nc);
+    for (int c = 0; c < nc; c++) {
+        int r = find(w, c);
+        if (w->vcart[w->big[r]] > 0 && w->cvol[r] < w->o->min_ratio * w->vcart[w->big[r]]) keep[c] = 1, n++;
+    }
+    if (n) return keep;
+    free(keep);
+    return NULL;
+}
+
 int merge_mesh(const Mesh *in, const MergeOpts *o, Mesh *out, MergeStats *st, Err *e)
 {
     memset(st, 0, sizeof *st);
@@ -1594,13 +1699,14 @@ int merge_mesh(const Mesh *in, const MergeOpts *o, Mesh *out, MergeStats *st, Er
     char *stuck = MEM_NEW(char, (size_t)nc);
     SlaveKey *bad = mem_alloc(sizeof(SlaveKey) * (size_t)nc);
     bad_clusters(&w, 0, bad, &st->skew_max_cut);
-    st->niter = merge_rounds(&w, stuck);
-    int nbad = bad_clusters(&w, skew_limit(o), bad, &st->skew_max_before);
-    st->nskew_merged = skew_rounds(&w, skew_limit(o), o->max_iter, bad, nbad);
     free(bad);
-    if (o->max_skewness > 0) {
-        st->nundone = repair(&w);
-        if (st->nundone) st->nclean_merged = clean_rounds(&w, stuck);
+    rounds(&w, stuck, st);
+    char *keep = tiny_cells(&w);
+    if (keep) {   /* again, keeping the clusters that held them (see rounds) */
+        work_free(&w);
+        work_init(&w, &g, o);
+        w.keep = keep;
+        rounds(&w, stuck, st);
     }
 
     int *newid = MEM_NEW(int, (size_t)nc), *root = MEM_NEW(int, (size_t)nc);
@@ -1624,6 +1730,7 @@ int merge_mesh(const Mesh *in, const MergeOpts *o, Mesh *out, MergeStats *st, Er
     out->nmerge_old = nc;
     free(root);
     free(stuck);
+    free(keep);
     work_free(&w);
     free_input_geometry(&g);
     return 0;

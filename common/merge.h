@@ -42,7 +42,10 @@
 ** face at 90 degrees or more, aspect ratio above 1000) is dissolved into
 ** its input cells, until none fails; then the cells below the bound
 ** merge again into passing unions only.  So with max_skewness in (0, 4]
-** the output fails no checkMesh check the input passed.  A cluster still
+** the output fails no checkMesh check the input passed, except where a
+** cell below min_ratio has no passing union: it takes a sound one (face
+** pyramids positive) and may leave a skewed face, because a solver runs
+** with a skewed face but not with a cell 1e-6 of its neighbours.  A cluster still
 ** above max_skewness (a face the cut grid had) is reported with
 ** MERGE_SKEWNESS.
 */
@@ -61,6 +64,7 @@ typedef struct MergeOpts {
     int criterion;      /* MERGE_NORMAL (default) or MERGE_NORMAL_H */
     int max_iter;       /* default 10; also bounds the quality rounds */
     double max_skewness;   /* quality pass limit, default 4 (QUALITY_SKEW_HIGH); 0 = off */
+    double min_ratio;   /* below this V / V_cart a sound union is taken when no clean one is; default 0.01 */
 } MergeOpts;
 
 typedef struct MergeStats {
@@ -79,6 +83,7 @@ typedef struct MergeStats {
     int nskew_merged;         /* merges made by the quality pass */
     int nundone;              /* clusters the repair dissolved */
     int nclean_merged;        /* merges made after the repair */
+    int nforced;              /* of those, sound but not clean (cells below min_ratio) */
     double skew_max_cut;      /* max face skewness of the input (OpenFOAM's, quality.h) */
     double skew_max_before;   /* after the volume rounds */
     double skew_max_after;    /* and in the output */

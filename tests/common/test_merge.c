@@ -662,7 +662,9 @@ static void hand_face(MeshBuild *b, int c, int other, int patch, const double ou
    T's, (1.5, 0.8, 1.5)) but only 0.2 away in y, skewness about
    0.55 / max(0.4 x 0.2, 0.05) = 6.9 (6.81 exactly, and one more face
    above 4), where the cut grid has at most 4;
-   no other union is clean, so S and T (0.4 of its parent) stay alone. */
+   no other union is clean, so with minRatio 0 S and T (0.4 of its
+   parent) stay alone; with the default minRatio 0.01 S (0.0041) would be
+   left far too small, and it merges into S + T again. */
 TEST(unsound_master_refused)
 {
     MeshBuild b;
@@ -729,7 +731,22 @@ TEST(unsound_master_refused)
     merge_stats_free(&st);
     mesh_free(&out);
 
+    /* the defaults: S (0.0041 of its parent, below minRatio 0.01) would
+       come back alone, so after the repair undoes S + T the clean rounds
+       take it again as the sound union it is (forced) */
     merge_opts_default(&o);
+    EXPECT(merge_mesh(&in, &o, &out, &st, &e) == 0, "%s", e.msg);
+    quality_measure(&out, &q);
+    EXPECT(out.ncells == 2 && out.merge_map[S] == out.merge_map[T] && st.nforced == 1 && st.nundone == 1,
+           "%d cells, %d forced, %d undone", out.ncells, st.nforced, st.nundone);
+    EXPECT(q.nskew == 2 && q.skew_max > 6.8 && q.skew_max < 6.9, "%d skewed faces, max %g", q.nskew, q.skew_max);
+    EXPECT(st.ratio_min_after > 0.4, "smallest ratio %g", st.ratio_min_after);
+    merge_stats_free(&st);
+    mesh_free(&out);
+
+    /* minRatio 0: no merge that checkMesh would fail, S and T alone */
+    merge_opts_default(&o);
+    o.min_ratio = 0;
     EXPECT(merge_mesh(&in, &o, &out, &st, &e) == 0, "%s", e.msg);
     quality_measure(&out, &q);
     EXPECT(out.ncells == 3 && st.nundone == 1 && st.nclean_merged == 0, "%d cells, %d undone", out.ncells, st.nundone);

@@ -50,6 +50,9 @@ static void report(FILE *f, const MergeStats *s, const Mesh *m)
             s->skew_max_cut, s->skew_max_before, s->skew_max_after);
     fprintf(f, "  quality merges:          %d (quality pass), %d clusters undone, %d merges after them\n",
             s->nskew_merged, s->nundone, s->nclean_merged);
+    if (s->nforced)
+        fprintf(f, "  forced merges:           %d (clusters kept or made with a face checkMesh calls skewed, so that no cell below minRatio stays alone)\n",
+                s->nforced);
     fprintf(f, "  worst aspect ratio:      before %.6g, after %.6g\n", s->aspect_max_before, s->aspect_max_after);
     fprintf(f, "  total volume:            before %.15g, after %.15g (relative difference %.3e)\n", s->vol_before,
             s->vol_after, rel);

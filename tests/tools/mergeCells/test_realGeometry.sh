@@ -9,7 +9,11 @@
 #   flange flange.stl.gz, flow outside, 32 cells, 10% margins: cut grid
 #          OK (2.61), the merge before the repair 6 faces above 4 (4.71).
 # Checks on each:
-#   - merged with the defaults, checkGrid's max skewness is <= 4, no face
+#   - merged with the defaults (minRatio 0.01), no cell is below 0.01 of
+#     its Cartesian cell (blob's cut grid has 3.3e-7, and without minRatio
+#     one of 1.8e-4 stays), and checkMesh finds nothing but skewness, and
+#     that only where mergeCells reports forced merges;
+#   - merged with minRatio 0, checkGrid's max skewness is <= 4, no face
 #     above 4, and the mergeCells log's "after" value is checkGrid's (1e-9
 #     relative); with checkMesh installed: "Mesh OK." after merging when
 #     the cut grid had it, else no more failed checks than the cut grid;
@@ -86,7 +90,36 @@ run() {
     cp -r $c/constant/polyMesh $c/cut
     [ $have_cm = 1 ] && checkMesh -case $c >$c/log.checkMesh.cut 2>&1
 
-    # defaults: no new failure
+    # the defaults (minRatio 0.01): no cell below 1e-2 of its Cartesian
+    # cell, and no new checkMesh failure but skewness where the log says
+    # it kept a merge for that
+    if ! "$BIN/mergeCells" -case $c >$c/log.mergeCells.default 2>&1; then
+        fail ${c}_merge_default "$(tail -n 2 $c/log.mergeCells.default)"
+        return
+    fi
+    local rmin nforced
+    rmin=$(sed -n 's/^  smallest volume ratio: .*, after \([0-9.e+-]*\) .*/\1/p' $c/log.mergeCells.default)
+    nforced=$(sed -n 's/^  forced merges: *\([0-9]*\) .*/\1/p' $c/log.mergeCells.default)
+    if awk -v r="$rmin" 'BEGIN { exit !(r != "" && r >= 0.01) }'; then
+        pass ${c}_min_ratio "smallest volume ratio $rmin >= minRatio 0.01 (cut grid $(sed -n 's/^  smallest volume ratio: *before \([0-9.e+-]*\),.*/\1/p' $c/log.mergeCells.default)), ${nforced:-0} forced merges"
+    else
+        fail ${c}_min_ratio "smallest volume ratio '$rmin' < minRatio 0.01"
+    fi
+    if [ $have_cm = 1 ]; then
+        checkMesh -case $c >$c/log.checkMesh.default 2>&1
+        local other
+        other=$(grep -E '^ *\*\*\*' $c/log.checkMesh.default | grep -v -i 'skew' | head -n 1)
+        if [ -z "$other" ] && { [ -n "$nforced" ] || [ "$(cmstatus $c/log.checkMesh.default)" = "Mesh OK" ]; }; then
+            pass ${c}_default_checkMesh "$(cmstatus $c/log.checkMesh.default) (skewness only, with ${nforced:-0} forced merges)"
+        else
+            fail ${c}_default_checkMesh "$(grep -E '\*\*\*' $c/log.checkMesh.default | head -n 2 | tr '\n' ' ')"
+        fi
+    fi
+    rm -rf $c/constant/polyMesh
+    cp -r $c/cut $c/constant/polyMesh
+
+    # minRatio 0: issue 9's guarantee, no new failure at all
+    { header mergeCellsDict; echo 'minRatio 0;'; } >$c/system/mergeCellsDict
     if ! "$BIN/mergeCells" -case $c >$c/log.mergeCells 2>&1; then
         fail ${c}_merge "$(tail -n 2 $c/log.mergeCells)"
         return
@@ -113,6 +146,8 @@ run() {
     else
         echo "SKIP ${c}_no_new_failure: OpenFOAM's checkMesh is not installed (checkGrid's skewness checked above)"
     fi
+
+    rm $c/system/mergeCellsDict
 
     # no quality pass: skewed faces, compared face for face
     rm -rf $c/constant/polyMesh
