@@ -269,7 +269,8 @@ static void convect_cT(Granular *g)
 }
 
 /* V c^{m+1}/dt + eps^m c^{m+1} V - div(K_T lambda_f grad) on the matrix,
-   V (cT)^m/dt - div(phi cT) + heat V on the right-hand side. */
+   V (cT)^m/dt - div(phi cT) + heat V on the right-hand side, and the
+   source hook's integrals of s_T when there is a hook (newtonian.h). */
 static void assemble_T(Granular *g, double dt)
 {
     GranModel *m = &g->gm;
@@ -284,6 +285,8 @@ static void assemble_T(Granular *g, double dt)
         double V = f->m->cell_vol[r];
         M->rhs[r] += V * m->uk[r] / dt - g->force[r] + m->heat[r] * V;
     }
+    if (g->src.fn)
+        for (int r = 0; r < M->nrows; r++) M->rhs[r] += g->src_T[r];
 }
 
 int granmodel_temperature(Granular *g, double dt, Err *e)

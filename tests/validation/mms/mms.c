@@ -73,20 +73,28 @@ static void run_level(const Study *s, Level *lv)
 
 static void print_head(const Study *s)
 {
-    printf("Manufactured solution, %s (%d-D), %s, Gauss %s%s: mu %g, RsT %g, steady to %g (t <= %g), maxCo %g",
-           s->kind, s->dim, s->interp, s->div, strcmp(s->div, "limitedLinear") ? "" : " 1", s->mu, s->RsT, s->tol,
-           s->tmax, s->maxCo);
+    printf("Manufactured solution, %s (%d-D), %s, Gauss %s%s: ", s->kind, s->dim, s->interp, s->div,
+           strcmp(s->div, "limitedLinear") ? "" : " 1");
+    if (s->granular)
+        printf("model granular (eta0 %g, lambda0 %g, eps0 %g, cMax %g, c0 %g, T0 %g, KT %.6g)", s->k.eta0, s->k.lambda0,
+               s->k.eps0, s->k.cmax, s->k.c0, s->k.T0, s->k.KT);
+    else
+        printf("mu %g, RsT %g", s->mu, s->RsT);
+    printf(", steady to %g (t <= %g), maxCo %g", s->tol, s->tmax, s->maxCo);
     if (s->voronoi) printf(", %d boundary layers", s->layers);
     else printf(", merged with M_V 1/2, maxSkewness %g", s->max_skewness);
-    printf("\n     N   cells  steps       t   change  L1 rho     order  Linf rho   order  L1 |u|     order  "
-           "Linf |u|   order  mass chg    time\n");
+    printf("\n     N   cells  steps       t   change  L1 %-4s    order  Linf %-4s  order  L1 |u|     order  "
+           "Linf |u|   order",
+           s->granular ? "c" : "rho", s->granular ? "c" : "rho");
+    if (s->granular) printf("  L1 T       order  Linf T     order");
+    printf("  mass chg    time\n");
 }
 
 static void print_row(const Study *s, const Level *lv, const Level *prev)
 {
     printf("  %4d %7d %6d %6.2f%s %8.1e", lv->N, lv->cells, lv->steps, lv->t, lv->rate > s->tol ? "*" : " ",
            lv->rate);
-    for (int q = 0; q < MMS_NQ; q++) {
+    for (int q = 0; q < (s->granular ? MMS_NQ : 4); q++) {
         printf("  %.3e", lv->err[q]);
         if (prev) printf(" %5.2f", order(prev, lv, q));
         else printf("     -");
@@ -95,20 +103,24 @@ static void print_row(const Study *s, const Level *lv, const Level *prev)
     fflush(stdout);
 }
 
-static const char *const qname[MMS_NQ] = {"L1_rho", "Linf_rho", "L1_u", "Linf_u"};
+static const char *const qname_newt[MMS_NQ] = {"L1_rho", "Linf_rho", "L1_u", "Linf_u", NULL, NULL};
+static const char *const qname_gran[MMS_NQ] = {"L1_c", "Linf_c", "L1_u", "Linf_u", "L1_T", "Linf_T"};
+static const char *const *qnames(const Study *s) { return s->granular ? qname_gran : qname_newt; }
 
 /* PASS/FAIL per expected order between the last two levels. */
 static int verdict(const Study *s, const Level *lv, int n)
 {
     int nfail = 0;
+    const char *const *qname = qnames(s);
     for (int q = 0; q < MMS_NQ; q++) {
         double want = s->expect[q];
         if (want < 0 || n < 2) continue;
         double o = order(&lv[n - 2], &lv[n - 1], q);
         int steady = lv[n - 1].rate <= s->tol, ok = o >= want && steady;
         nfail += !ok;
-        printf("%s mms_%s_%s_%s_%s: observed order %.2f between N = %d and %d (expected >= %.2f)%s\n",
-               ok ? "PASS" : "FAIL", s->kind, s->interp, s->div, qname[q], o, lv[n - 2].N, lv[n - 1].N, want,
+        printf("%s mms_%s%s_%s_%s_%s: observed order %.2f between N = %d and %d (expected >= %.2f)%s\n",
+               ok ? "PASS" : "FAIL", s->granular ? "granular_" : "", s->kind, s->interp, s->div, qname[q], o,
+               lv[n - 2].N, lv[n - 1].N, want,
                steady ? "" : "; the last level is not steady");
     }
     return nfail;
@@ -116,19 +128,22 @@ static int verdict(const Study *s, const Level *lv, int n)
 
 static void usage(void)
 {
-    printf("usage: mms [-mu MU] [-RsT R] [-layers L] [-tol T] [-tmax T] [-maxCo C] [-maxSkewness S] "
-           "[-expect L1_rho|Linf_rho|L1_u|Linf_u=P]... "
+    printf("usage: mms [-model Newtonian|granular] [-mu MU] [-RsT R] [-KT K] [-T0 T0] [-layers L] [-tol T] "
+           "[-tmax T] [-maxCo C] [-maxSkewness S] "
+           "[-expect L1_rho|Linf_rho|L1_c|Linf_c|L1_u|Linf_u|L1_T|Linf_T=P]... "
            "disc-cut|disc-voronoi|ball-cut|ball-voronoi shepard|multilinear upwind|limitedLinear|vanLeer N...\n"
            "       mms -check\n");
     exit(2);
 }
 
-/* -expect NAME=P: the order P expected of norm NAME (qname). */
+/* -expect NAME=P: the order P expected of norm NAME (qnames; -model
+   comes first). */
 static void expect(Study *s, const char *arg)
 {
+    const char *const *qname = qnames(s);
     for (int q = 0; q < MMS_NQ; q++) {
-        size_t n = strlen(qname[q]);
-        if (!strncmp(arg, qname[q], n) && arg[n] == '=') {
+        size_t n = qname[q] ? strlen(qname[q]) : 0;
+        if (n && !strncmp(arg, qname[q], n) && arg[n] == '=') {
             s->expect[q] = atof(arg + n + 1);
             return;
         }
@@ -139,14 +154,16 @@ static void expect(Study *s, const char *arg)
 /* Options and the three words into s; returns the index of the first N. */
 static int parse(int argc, char **argv, Study *s)
 {
-    static const char *const opt[] = {"-mu", "-RsT", "-tol", "-tmax", "-maxCo", "-maxSkewness"};
-    double *dst[] = {&s->mu, &s->RsT, &s->tol, &s->tmax, &s->maxCo, &s->max_skewness};
+    static const char *const opt[] = {"-mu", "-RsT", "-KT", "-T0", "-tol", "-tmax", "-maxCo", "-maxSkewness"};
+    double *dst[] = {&s->mu, &s->RsT, &s->k.KT, &s->k.T0, &s->tol, &s->tmax, &s->maxCo, &s->max_skewness};
     int i = 1, nopt = (int)(sizeof opt / sizeof opt[0]);
     while (i + 1 < argc && argv[i][0] == '-') {
         int j = 0;
         while (j < nopt && strcmp(argv[i], opt[j])) j++;
         if (j < nopt) *dst[j] = atof(argv[i + 1]);
         else if (!strcmp(argv[i], "-layers")) s->layers = atoi(argv[i + 1]);
+        else if (!strcmp(argv[i], "-model") && (!strcmp(argv[i + 1], "granular") || !strcmp(argv[i + 1], "Newtonian")))
+            s->granular = !strcmp(argv[i + 1], "granular");
         else if (!strcmp(argv[i], "-expect")) expect(s, argv[i + 1]);
         else usage();
         i += 2;

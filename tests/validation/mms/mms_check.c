@@ -108,11 +108,12 @@ static int steps(MmsCase *k, int n, double dt, Err *e)
     return 0;
 }
 
-static int hook_zero(void *ctx, const FvMesh *f, double t, double *rho_src, double *mom_src, Err *e)
+static int hook_zero(void *ctx, const FvMesh *f, double t, double *rho_src, double *mom_src, double *T_src, Err *e)
 {
     (void)ctx, (void)t, (void)e;
     memset(rho_src, 0, sizeof(double) * (size_t)f->ncells);
     memset(mom_src, 0, sizeof(double) * 3 * (size_t)f->ncells);
+    if (T_src) memset(T_src, 0, sizeof(double) * (size_t)f->ncells);
     return 0;
 }
 
@@ -141,10 +142,10 @@ typedef struct Recorder {
     double t[64];
 } Recorder;
 
-static int hook_unit(void *ctx, const FvMesh *f, double t, double *rho_src, double *mom_src, Err *e)
+static int hook_unit(void *ctx, const FvMesh *f, double t, double *rho_src, double *mom_src, double *T_src, Err *e)
 {
     Recorder *r = ctx;
-    (void)e;
+    (void)e, (void)T_src;
     if (r->n < 64) r->t[r->n++] = t;
     for (int c = 0; c < f->ncells; c++) {
         rho_src[c] = f->m->cell_vol[c];
@@ -177,9 +178,10 @@ TEST(hook_mass)
     mms_case_free(&k);
 }
 
-static int hook_broken(void *ctx, const FvMesh *f, double t, double *rho_src, double *mom_src, Err *e)
+static int hook_broken(void *ctx, const FvMesh *f, double t, double *rho_src, double *mom_src, double *T_src,
+                       Err *e)
 {
-    (void)ctx, (void)f, (void)rho_src, (void)mom_src;
+    (void)ctx, (void)f, (void)rho_src, (void)mom_src, (void)T_src;
     return err_set(e, "hook", 1, "no source at t = %g", t);
 }
 
