@@ -77,8 +77,9 @@ typedef struct GranModel {
     double *cfl;           /* ncells: c^{m+1} floored to cMin (the matrices) */
     double *T1;            /* ncells: the new temperature */
     double *heat;          /* ncells: K_T eta_C sum (J_C)_ij^2 (per volume) */
-    double *area;          /* ncells: sum of |S_f| over non-empty faces */
     double *jac;           /* 9 ncells: the Jacobian's sums (scratch) */
+    double *jmet;          /* 9 ncells: the inverse of M_C = sum_f n_f n_f^T A_f
+                              over the non-empty faces (the Jacobian's metric) */
     double *ub;            /* 3 nboundary: U's boundary values with u_S at walls */
     FvMatrix M;
     Fvm op;
