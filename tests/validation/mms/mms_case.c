@@ -34,13 +34,17 @@ void mms_study_default(Study *s)
     MmsParams p = {{0.511, 0.493, 0.507}, 0.4, 0.15, 0.1, 0.125, 0.5};
     s->p = p;
     /* model granular (doc/validation.md, "Granular manufactured
-       solutions"): c in [0.41, 0.54] above c0 = 0.3 (the yield terms act
-       everywhere, p_y/p_k 0.6 to 0.9), T in [0.16, 0.34], |u| <= 0.35
-       (Mach 0.25); the coefficients make convection, viscosity,
-       conduction, heating and dissipation all of the same order */
-    GranCoeffs k = {.eta0 = 0.1, .lambda0 = 0.1, .eps0 = 1, .cmax = 0.8, .c0 = 0.3, .T0 = 0.5, .KT = 2.0 / 3};
+       solutions"): c in [0.41, 0.51] above c0 = 0.3 (the yield terms act
+       everywhere: p_y/p_k about 0.4 to 1.3), T in [0.16, 0.34], |u| <= 0.4
+       (Mach 0.23); the heating K_T eta kappa:kappa (up to 2.5) is up to
+       0.6 of the dissipation eps c T, so that s_T > 0 (1.1 to 7.6): a
+       state whose heating is balanced by a fixed sink s_T < 0 is not
+       stable (a cell that cools loses its heating: with eps0 = 1 and
+       A = 0.06, heating/dissipation up to 28, the ball drifts to a cold
+       wall cell and never settles) */
+    GranCoeffs k = {.eta0 = 0.1, .lambda0 = 0.1, .eps0 = 20, .cmax = 0.8, .c0 = 0.3, .T0 = 0.5, .KT = 2.0 / 3};
     s->k = k;
-    MmsGranParams pg = {{0.511, 0.493, 0.507}, 0.4, 0.45, 0.06, 0.05, 0.2, 0.06, 0.1, 0.06, 0.5};
+    MmsGranParams pg = {{0.511, 0.493, 0.507}, 0.4, 0.45, 0.06, 0.05, 0.2, 0.06, 0.1, 0.04, 0.5};
     s->pg = pg;
 }
 

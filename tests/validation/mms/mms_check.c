@@ -29,10 +29,12 @@
 **                 T^1 = (c T^0/dt + Q)/(c/dt + eps c) in every cell to 1e-12;
 **   gran_heat_cut the viscous heating of the face-based Jacobian at the exact
 **                 state against K_T eta kappa:kappa on the disc cut and
-**                 merged (N = 16, 32, 64): the mean error over the cut cells
-**                 <= 0.2 at N = 32 and falling (measured 0.137, 0.125,
-**                 0.066; eq. 4.65's alpha A_f/sum A_f weight: 0.61, 0.93,
-**                 0.89, not converging), over the whole cells halved.
+**                 merged (N = 16, 32, 64; the heating is up to 2.5): the
+**                 mean error over the cut cells <= 0.1 at N = 32 and
+**                 falling by 0.7 to N = 64 (measured 0.061, 0.055, 0.030;
+**                 eq. 4.65's alpha A_f/sum A_f weight: 0.30, 0.41, 0.40,
+**                 not converging), over the whole cells halved (0.0053,
+**                 0.0016).
 */
 #include "mem.h"
 #include "mms.h"
@@ -433,9 +435,9 @@ TEST(gran_heat_cut)
     heat_errors(32, e32);
     heat_errors(64, e64);
     printf("  mean |heating error|, whole cells: %.3e %.3e %.3e, cut cells: %.3e %.3e %.3e (N = 16, 32, 64; "
-           "heating 0.6 to 2.7)\n",
+           "heating up to 2.5)\n",
            e16[0], e32[0], e64[0], e16[1], e32[1], e64[1]);
-    EXPECT(e32[1] <= 0.2 && e64[1] <= 0.6 * e32[1], "cut cells: %.3e, %.3e", e32[1], e64[1]);
+    EXPECT(e32[1] <= 0.1 && e64[1] <= 0.7 * e32[1], "cut cells: %.3e, %.3e", e32[1], e64[1]);
     EXPECT(e64[0] <= 0.5 * e32[0], "whole cells: %.3e, %.3e", e32[0], e64[0]);
 }
 
