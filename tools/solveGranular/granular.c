@@ -254,7 +254,7 @@ static double normal_derivative(const Granular *g, int i, int k, const double *u
 }
 
 /* heat[c] = K_T eta_C sum_ij (J_C)_ij^2 with the face-based Jacobian of
-   eq. 4.65 (granular.h) of u^m. */
+   u^m (eq. 4.65 with the metric M_C^-1, granular.h). */
 static void heating(Granular *g)
 {
     GranModel *m = &g->gm;
