@@ -1,7 +1,9 @@
 /*
 ** mms.c: manufactured-solution convergence studies of solveGranular's
 ** model Newtonian (eq. 5.1 by eq. 4.66, tools/solveGranular/newtonian.h)
-** on cut-and-merged and Voronoi grids, 2-D and 3-D (issue 11).
+** and, with -model granular, of model granular (c, u, T with yield, eq.
+** 2.37-2.39 by eq. 4.66, tools/solveGranular/granular.h) on
+** cut-and-merged and Voronoi grids, 2-D and 3-D (issue 11).
 **
 **   mms [options] KIND INTERP DIV N...
 **   mms -check
@@ -18,10 +20,14 @@
 **           Gauss limitedLinear 1, Gauss vanLeer, for rho and U)
 **   N...    the grid levels, coarse to fine
 **
-** options: -mu MU (0.1), -RsT R (6), -layers L (Voronoi boundary layers,
+** options: -model Newtonian | granular (Newtonian; granular: the solution
+** of mms_exact_gran.h, derived by derive_granular.py, with the closures'
+** coefficients of mms_case.c; -KT K and -T0 T0 change two of them), -mu MU
+** (0.1), -RsT R (6; both model Newtonian's), -layers L (Voronoi boundary layers,
 ** 2), -tol T (steady tolerance, 1e-7), -tmax T (20), -maxCo C (0.5),
 ** -maxSkewness S (mergeCells' quality pass, 4; 0 = off), -expect NAME=P
-** (repeatable; NAME L1_rho, Linf_rho, L1_u or Linf_u: the order P expected
+** (repeatable; NAME L1_rho, Linf_rho, L1_u or Linf_u, model
+** granular L1_c, Linf_c, L1_u, Linf_u, L1_T or Linf_T: the order P expected
 ** of that norm between the last two levels; the program prints a PASS or
 ** FAIL line for each, FAIL also when the last level did not reach the
 ** steady state, and exits 1 on a FAIL).  -check runs the checks of make
@@ -40,8 +46,10 @@
 ** dt, below -tol (else t reaches -tmax, and the table marks t with *).
 ** The errors are taken at the cell nodes (centroids; Voronoi seeds):
 **     L1 = sum_c V_c |e_c| / sum_c V_c,   Linf = max_c |e_c|,
-** e = rho - rho_exact for the density and |u - u_exact| for the velocity,
-** and the observed order between levels N1 < N2 is
+** e = rho - rho_exact for the density and |u - u_exact| for the velocity
+** (model granular: c - c_exact, |u - u_exact| and T - T_exact; the steady
+** test also takes T's change, and the hook hands the model the integrals
+** of s_T too), and the observed order between levels N1 < N2 is
 ** log(e1/e2) / log(N2/N1).  Time is CPU time.
 */
 #include "mem.h"
@@ -136,8 +144,8 @@ static void usage(void)
     exit(2);
 }
 
-/* -expect NAME=P: the order P expected of norm NAME (qnames; -model
-   comes first). */
+/* -expect NAME=P: the order P expected of norm NAME (qnames of the
+   model, which parse reads first). */
 static void expect(Study *s, const char *arg)
 {
     const char *const *qname = qnames(s);
@@ -157,6 +165,8 @@ static int parse(int argc, char **argv, Study *s)
     static const char *const opt[] = {"-mu", "-RsT", "-KT", "-T0", "-tol", "-tmax", "-maxCo", "-maxSkewness"};
     double *dst[] = {&s->mu, &s->RsT, &s->k.KT, &s->k.T0, &s->tol, &s->tmax, &s->maxCo, &s->max_skewness};
     int i = 1, nopt = (int)(sizeof opt / sizeof opt[0]);
+    for (int j = 1; j + 1 < argc && argv[j][0] == '-'; j += 2) /* the model first: -expect's names depend on it */
+        if (!strcmp(argv[j], "-model")) s->granular = !strcmp(argv[j + 1], "granular");
     while (i + 1 < argc && argv[i][0] == '-') {
         int j = 0;
         while (j < nopt && strcmp(argv[i], opt[j])) j++;
