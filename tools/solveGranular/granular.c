@@ -74,13 +74,14 @@ static void alloc_model(Granular *g)
 /* The inverse of 3x3 a (row-major) into b, restricted to the axes other
    than skip (-1: none; the rows and columns of skip are 0).  a is
    symmetric positive definite on those axes (a closed cell's normals span
-   them). */
+   them); a cell without faces (a halo slot not yet filled) gets b = 0. */
 static void inverse_sym(const double *a, int skip, double *b)
 {
     memset(b, 0, 9 * sizeof(double));
     if (skip >= 0) {
         int i = skip == 0 ? 1 : 0, j = skip == 2 ? 1 : 2;
         double det = a[3 * i + i] * a[3 * j + j] - a[3 * i + j] * a[3 * j + i];
+        if (!(det > 0)) return;
         b[3 * i + i] = a[3 * j + j] / det, b[3 * j + j] = a[3 * i + i] / det;
         b[3 * i + j] = -a[3 * i + j] / det, b[3 * j + i] = -a[3 * j + i] / det;
         return;
@@ -91,7 +92,7 @@ static void inverse_sym(const double *a, int skip, double *b)
             b[3 * r + c] = a[3 * r1 + c1] * a[3 * r2 + c2] - a[3 * r1 + c2] * a[3 * r2 + c1];
         }
     double det = a[0] * b[0] + a[1] * b[3] + a[2] * b[6];
-    for (int q = 0; q < 9; q++) b[q] /= det;
+    for (int q = 0; q < 9; q++) b[q] = det > 0 ? b[q] / det : 0;
 }
 
 /* Each cell's metric of the face-based Jacobian (granular.h): the inverse
