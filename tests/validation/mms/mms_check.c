@@ -24,9 +24,10 @@
 **                 and the heating to 1e-5 relative, div(c u) = 0 to 1e-8;
 **                 on the wall u = 0, dc/dn = dT/dn = 0 to 1e-8; c0 < c < cMax;
 **   gran_hook_none  a zero hook (T_src included) changes nothing, bit for bit;
-**   gran_hook_T   a temperature source Q = 1 per unit volume at rest with
-**                 uniform c, T: one step gives the implicit Euler
-**                 T^1 = (c T^0/dt + Q)/(c/dt + eps c) in every cell to 1e-12;
+**   gran_hook_T   sources Q_c = 0.5 and Q_T = 1 per unit volume at rest
+**                 with uniform c, T: one step gives c^1 = c + dt Q_c (to
+**                 1e-14) and the implicit Euler T^1 = (c T^0/dt + Q_T)/
+**                 (c^1/dt + eps c^1) in every cell to 1e-12, u stays 0;
 **   gran_heat_cut the viscous heating of the face-based Jacobian at the exact
 **                 state against K_T eta kappa:kappa on the disc cut and
 **                 merged (N = 16, 32, 64; the heating is up to 2.5): the
@@ -337,14 +338,14 @@ TEST(gran_exact_fd)
     }
 }
 
-/* The hook of gran_hook_T: s_T = Q per unit volume, nothing else. */
+/* The hook of gran_hook_T: s_c = Q[0] and s_T = Q[1] per unit volume,
+   no momentum source. */
 static int hook_T(void *ctx, const FvMesh *f, double t, double *rho_src, double *mom_src, double *T_src, Err *e)
 {
     const double *Q = ctx;
     (void)t, (void)e;
-    memset(rho_src, 0, sizeof(double) * (size_t)f->ncells);
     memset(mom_src, 0, sizeof(double) * 3 * (size_t)f->ncells);
-    for (int c = 0; c < f->ncells; c++) T_src[c] = *Q * f->m->cell_vol[c];
+    for (int c = 0; c < f->ncells; c++) rho_src[c] = Q[0] * f->m->cell_vol[c], T_src[c] = Q[1] * f->m->cell_vol[c];
     return 0;
 }
 
@@ -366,20 +367,23 @@ TEST(gran_hook_T)
     Study s;
     MmsCase k;
     Err e;
-    double Q = 1, dt = 1e-2, worst = 0, umax = 0;
+    double Q[2] = {0.5, 1}, dt = 1e-2, worst = 0, cworst = 0, umax = 0;
     gran_rest(&k, &s);
-    k.g.src = (GranSource){hook_T, &Q};
+    k.g.src = (GranSource){hook_T, Q};
     EXPECT(!steps(&k, 1, dt, &e), "step: %s", e.msg);
-    /* c (T1 - T0)/dt = -eps(c, T0) c T1 + Q: the implicit dissipation, no
-       conduction, heating or convection at rest */
-    double c = s.pg.cm, T0 = s.pg.Tm, eps = closure_eps(&s.k, c, T0), want = (c * T0 / dt + Q) / (c / dt + eps * c);
+    /* c1 = c + dt Q_c; c1 T1 - c T0 = dt (-eps(c, T0) c1 T1 + Q_T): the
+       implicit dissipation, no conduction, heating or convection at rest */
+    double c = s.pg.cm, c1 = c + dt * Q[0], T0 = s.pg.Tm, eps = closure_eps(&s.k, c, T0);
+    double want = (c * T0 / dt + Q[1]) / (c1 / dt + eps * c1);
     for (int i = 0; i < k.f.nowned; i++) {
         worst = fmax(worst, fabs(k.T.v[i] - want) / want);
+        cworst = fmax(cworst, fabs(k.rho.v[i] - c1) / c1);
         for (int j = 0; j < 3; j++) umax = fmax(umax, fabs(k.U.v[3 * i + j]));
     }
     EXPECT(worst <= 1e-12, "T after one step off by %.2e relative (want %.17g)", worst, want);
+    EXPECT(cworst <= 1e-14, "c after one step off by %.2e relative (want %.17g)", cworst, c1);
     EXPECT(umax <= 1e-14, "the rest state moved: |u| = %.2e", umax);
-    printf("  T^1 = %.15g in every cell to %.1e (|u| %.1e)\n", want, worst, umax);
+    printf("  c^1 = %.15g and T^1 = %.15g in every cell to %.1e, %.1e (|u| %.1e)\n", c1, want, cworst, worst, umax);
     mms_case_free(&k);
 }
 
