@@ -56,7 +56,7 @@ static void alloc_model(Granular *g)
 {
     GranModel *m = &g->gm;
     size_t nc = (size_t)g->f->ncells + 1, nf = (size_t)g->f->nfaces + 1, nb = (size_t)g->f->nboundary + 1;
-    double **cell[] = {&m->eta_c, &m->lam_c, &m->eps_c, &m->pc, &m->cfl, &m->T1, &m->heat, &m->area, &m->uk};
+    double **cell[] = {&m->eta_c, &m->lam_c, &m->eps_c, &m->pc, &m->cfl, &m->T1, &m->heat, &m->uk};
     for (size_t i = 0; i < sizeof cell / sizeof cell[0]; i++) *cell[i] = mem_calloc(nc, sizeof(double));
     double **face[] = {&m->eta_f, &m->lam_f, &m->speed_f};
     for (size_t i = 0; i < sizeof face / sizeof face[0]; i++) *face[i] = mem_calloc(nf, sizeof(double));
@@ -64,20 +64,52 @@ static void alloc_model(Granular *g)
     for (size_t i = 0; i < sizeof bnd / sizeof bnd[0]; i++) *bnd[i] = mem_calloc(nb, sizeof(double));
     m->ub = mem_calloc(3 * nb, sizeof(double));
     m->jac = mem_calloc(9 * nc, sizeof(double));
+    m->jmet = mem_calloc(9 * nc, sizeof(double));
     if (g->gravity != GRAN_WELL_BALANCED) return;
     double **prof[] = {&m->prof_v, &m->prof_p, &m->prof_theta};
     for (size_t i = 0; i < sizeof prof / sizeof prof[0]; i++) *prof[i] = mem_calloc(nc, sizeof(double));
     m->grav = mem_calloc(3 * nc, sizeof(double));
 }
 
-/* Sum of |S_f| over each cell's faces that are not empty (eq. 4.65). */
-static void face_areas(const FvMesh *f, double *area)
+/* The inverse of 3x3 a (row-major) into b, restricted to the axes other
+   than skip (-1: none; the rows and columns of skip are 0).  a is
+   symmetric positive definite on those axes (a closed cell's normals span
+   them); a cell without faces (a halo slot not yet filled) gets b = 0. */
+static void inverse_sym(const double *a, int skip, double *b)
 {
+    memset(b, 0, 9 * sizeof(double));
+    if (skip >= 0) {
+        int i = skip == 0 ? 1 : 0, j = skip == 2 ? 1 : 2;
+        double det = a[3 * i + i] * a[3 * j + j] - a[3 * i + j] * a[3 * j + i];
+        if (!(det > 0)) return;
+        b[3 * i + i] = a[3 * j + j] / det, b[3 * j + j] = a[3 * i + i] / det;
+        b[3 * i + j] = -a[3 * i + j] / det, b[3 * j + i] = -a[3 * j + i] / det;
+        return;
+    }
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) { /* the cofactor of (c, r) */
+            int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+            b[3 * r + c] = a[3 * r1 + c1] * a[3 * r2 + c2] - a[3 * r1 + c2] * a[3 * r2 + c1];
+        }
+    double det = a[0] * b[0] + a[1] * b[3] + a[2] * b[6];
+    for (int q = 0; q < 9; q++) b[q] = det > 0 ? b[q] / det : 0;
+}
+
+/* Each cell's metric of the face-based Jacobian (granular.h): the inverse
+   of M_C = sum_f n_f n_f^T A_f over the faces that are not empty. */
+static void jacobian_metric(const FvMesh *f, double *jmet)
+{
+    double *M = mem_calloc(9 * (size_t)f->ncells + 1, sizeof(double));
     for (int i = 0; i < f->nfaces; i++) {
         if (f->empty_face[i]) continue;
-        area[f->m->owner[i]] += f->mag_sf[i];
-        if (i < f->ninternal) area[f->m->neighbour[i]] += f->mag_sf[i];
+        const double *S = f->m->face_area + 3 * i;
+        int cells[2] = {f->m->owner[i], i < f->ninternal ? f->m->neighbour[i] : -1};
+        for (int q = 0; q < 2 && cells[q] >= 0; q++)
+            for (int a = 0; a < 3; a++)
+                for (int b = 0; b < 3; b++) M[9 * cells[q] + 3 * a + b] += S[a] * S[b] / f->mag_sf[i];
     }
+    for (int c = 0; c < f->ncells; c++) inverse_sym(M + 9 * c, f->empty_axis, jmet + 9 * c);
+    free(M);
 }
 
 static int init_solver(Granular *g, const Dict *fvsolution, Err *e)
@@ -99,7 +131,7 @@ int granmodel_init(Granular *g, Field *T, const Dict *fvsolution, Err *e)
     m->T = T;
     if (bc_init(&m->bc_T, T, g->f, e)) return -1;
     alloc_model(g);
-    face_areas(g->f, m->area);
+    jacobian_metric(g->f, m->jmet);
     if (check_initial(g, e)) return -1;
     m->solved = !g->pr.freezeT;
     /* partialSlip's Coulomb bound (eq. 2.35): the wall pressure (the
@@ -116,8 +148,8 @@ void granmodel_free(GranModel *m)
     if (m->op.dist) fvm_free(&m->op);
     if (m->M.off) fvmatrix_free(&m->M);
     if (m->bc_T.fm) bc_free(&m->bc_T);
-    void *arr[] = {m->eta_c, m->lam_c, m->eps_c, m->pc, m->cfl, m->T1, m->heat, m->area, m->uk, m->eta_f, m->lam_f,
-                   m->speed_f, m->cb, m->Tb, m->etab, m->lamb, m->tb, m->ub, m->jac,
+    void *arr[] = {m->eta_c, m->lam_c, m->eps_c, m->pc, m->cfl, m->T1, m->heat, m->uk, m->eta_f, m->lam_f,
+                   m->speed_f, m->cb, m->Tb, m->etab, m->lamb, m->tb, m->ub, m->jac, m->jmet,
                    m->prof_v, m->prof_p, m->prof_theta, m->grav};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
     memset(m, 0, sizeof *m);
@@ -223,12 +255,11 @@ static double normal_derivative(const Granular *g, int i, int k, const double *u
 }
 
 /* heat[c] = K_T eta_C sum_ij (J_C)_ij^2 with the face-based Jacobian of
-   eq. 4.65 (granular.h) of u^m. */
+   u^m (eq. 4.65 with the metric M_C^-1, granular.h). */
 static void heating(Granular *g)
 {
     GranModel *m = &g->gm;
     const FvMesh *f = g->f;
-    int alpha = f->empty_axis >= 0 ? 2 : 3;
     memset(m->jac, 0, sizeof(double) * 9 * (size_t)f->ncells);
     wall_values(g);
     for (int k = 0; k < 3; k++) {
@@ -247,8 +278,13 @@ static void heating(Granular *g)
         }
     }
     for (int c = 0; c < f->ncells; c++) {
-        double w = alpha / m->area[c], sum = 0;
-        for (int q = 0; q < 9; q++) sum += (w * m->jac[9 * c + q]) * (w * m->jac[9 * c + q]);
+        const double *D = m->jac + 9 * c, *W = m->jmet + 9 * c;
+        double sum = 0;
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) { /* J = D M_C^-1 */
+                double Jij = D[3 * i] * W[j] + D[3 * i + 1] * W[3 + j] + D[3 * i + 2] * W[6 + j];
+                sum += Jij * Jij;
+            }
         m->heat[c] = g->pr.k.KT * m->eta_c[c] * sum;
     }
 }
@@ -269,7 +305,8 @@ static void convect_cT(Granular *g)
 }
 
 /* V c^{m+1}/dt + eps^m c^{m+1} V - div(K_T lambda_f grad) on the matrix,
-   V (cT)^m/dt - div(phi cT) + heat V on the right-hand side. */
+   V (cT)^m/dt - div(phi cT) + heat V on the right-hand side, and the
+   source hook's integrals of s_T when there is a hook (newtonian.h). */
 static void assemble_T(Granular *g, double dt)
 {
     GranModel *m = &g->gm;
@@ -284,6 +321,8 @@ static void assemble_T(Granular *g, double dt)
         double V = f->m->cell_vol[r];
         M->rhs[r] += V * m->uk[r] / dt - g->force[r] + m->heat[r] * V;
     }
+    if (g->src.fn)
+        for (int r = 0; r < M->nrows; r++) M->rhs[r] += g->src_T[r];
 }
 
 int granmodel_temperature(Granular *g, double dt, Err *e)

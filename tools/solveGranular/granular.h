@@ -20,19 +20,26 @@
 ** and, after the momentum solves, the temperature equation (eq. 4.66),
 **   V (c^{m+1} T^{m+1} - (cT)^m) / dt + sum_f B((cT)^m, phi)
 **       - sum_f K_T lambda_f |S_f| dT^{m+1}/dn + eps^m c^{m+1} T^{m+1} V
-**       = K_T eta_C sum_ij (J^m_C)_ij^2 V,
+**       = K_T eta_C sum_ij (J^m_C)_ij^2 V  (+ S_T, the source hook's, newtonian.h),
 ** with T^{m+1} the unknown (the thesis's (cT)^{m+1}/c to O(dt), as the
 ** momentum's), implicit conduction and dissipation, explicit heating.
-** J_C is the face-based Jacobian of §4.4 (eq. 4.57, 4.58, 4.65):
-**   (J_C)_ij = alpha sum_f (du_i/dn_f) (n_f)_j A_f / sum_f A_f
-** over the cell's faces that are not empty (alpha = 2 or 3), du/dn_f the
-** face's normal derivative of eq. 4.62 from its PLUS and MINUS rows, with
-** the wall velocity u_S at impermeable walls (slip and partialSlip walls
-** included: "gradients at slip walls are completely included", spec
-** §1.4).  The product (du/dn_f)(n_f)_j does not depend on the normal's
-** orientation (spec correction 5), so each face adds the same term to its
-** two cells.  The boundary condition of T is zeroGradient at walls (spec
-** §1.4); at an inflow with fixed c the advected state is c_F T_C.
+** J_C is the face-based Jacobian of §4.4 (eq. 4.57, 4.58, 4.65) with a
+** metric [OURS] that makes it exact for a linear velocity on any cell:
+**   J_C = (sum_f (du/dn_f) n_f^T A_f) M_C^-1,   M_C = sum_f n_f n_f^T A_f,
+** over the cell's faces that are not empty, du/dn_f the face's normal
+** derivative of eq. 4.62 from its PLUS and MINUS rows, with the wall
+** velocity u_S at impermeable walls (slip and partialSlip walls included:
+** "gradients at slip walls are completely included", spec §1.4).  On a
+** square or cubic cell M_C = (sum_f A_f / alpha) I and this is eq. 4.65's
+** alpha sum_f (du/dn_f)(n_f)_j A_f / sum_f A_f; on other cells (cut,
+** merged, Voronoi, rectangular) eq. 4.65's weight is not consistent: it
+** gives O(1) errors of the heating, which the granular manufactured
+** solutions showed (doc/theory.md §12, doc/validation.md).  M_C is
+** geometry, its inverse kept per cell.  The product (du/dn_f)(n_f)_j does
+** not depend on the normal's orientation (spec correction 5), so each face
+** adds the same term to its two cells.  The boundary condition of T is
+** zeroGradient at walls (spec §1.4); at an inflow with fixed c the
+** advected state is c_F T_C.
 **
 ** Limits (props.h: deltaC, Tmin, cMin), each counted per step and in all:
 ** c^{m+1} <= cMax - deltaC and T^{m+1} >= Tmin after each step, and c
@@ -77,8 +84,9 @@ typedef struct GranModel {
     double *cfl;           /* ncells: c^{m+1} floored to cMin (the matrices) */
     double *T1;            /* ncells: the new temperature */
     double *heat;          /* ncells: K_T eta_C sum (J_C)_ij^2 (per volume) */
-    double *area;          /* ncells: sum of |S_f| over non-empty faces */
     double *jac;           /* 9 ncells: the Jacobian's sums (scratch) */
+    double *jmet;          /* 9 ncells: the inverse of M_C = sum_f n_f n_f^T A_f
+                              over the non-empty faces (the Jacobian's metric) */
     double *ub;            /* 3 nboundary: U's boundary values with u_S at walls */
     FvMatrix M;
     Fvm op;

@@ -229,6 +229,7 @@ void gran_free(Granular *g)
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
     free(g->src_rho);
     free(g->src_m);
+    free(g->src_T);
     memset(g, 0, sizeof *g);
 }
 
@@ -445,8 +446,9 @@ static int source_eval(Granular *g, Err *e)
     if (!g->src_rho) {
         g->src_rho = mem_calloc(nc, sizeof(double));
         g->src_m = mem_calloc(3 * nc, sizeof(double));
+        if (g->model == MODEL_GRANULAR) g->src_T = mem_calloc(nc, sizeof(double));
     }
-    return g->src.fn(g->src.ctx, g->f, g->time, g->src_rho, g->src_m, e);
+    return g->src.fn(g->src.ctx, g->f, g->time, g->src_rho, g->src_m, g->src_T, e);
 }
 
 /* Adds the source integrals explicitly: dt/V S_rho to the new density,

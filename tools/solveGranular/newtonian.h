@@ -45,11 +45,14 @@
 **
 ** Sources: a caller may add given source terms to the two equations,
 **     d_t rho + ... = s_rho,     d_t(rho u) + ... = s_m,
+** and in model granular to the temperature equation (granular.h),
+**     d_t(c T) + ... = s_T,
 ** through the hook Granular.src (GranSource below; manufactured solutions,
 ** tests/validation/mms; later fvOptions).  Each step asks it for the
-** integrals of s_rho and s_m over every cell at the step's start time
-** t^m, and adds them explicitly, as the other explicit terms:
-**   rho^{m+1} += dt/V S_rho,   the momentum right-hand side += S_m.
+** integrals of s_rho, s_m (and s_T) over every cell at the step's start
+** time t^m, and adds them explicitly, as the other explicit terms:
+**   rho^{m+1} += dt/V S_rho,   the momentum right-hand side += S_m,
+**   the temperature's right-hand side += S_T (not with freezeT).
 ** Integrals, not point values, so that the hook chooses the quadrature:
 ** the centroid rule is second order on any cell (it integrates linear
 ** functions exactly), fv/quad.h's degree-2 rule third order (doc/theory.md).
@@ -84,11 +87,12 @@ typedef struct GranSchemes {
 
 /* A source hook: fn fills, for each of the f->ncells cells c, rho_src[c]
    = the integral of s_rho over cell c and mom_src[3 c + k] = that of
-   component k of s_m, at time t (units: kg/s and N).  It returns 0, or -1
-   with e filled (the step then fails and changes nothing).  ctx is the
-   caller's. */
+   component k of s_m, at time t (units: kg/s and N), and in model
+   granular T_src[c] = that of s_T, the source of the c T equation (T_src
+   is NULL in model Newtonian).  It returns 0, or -1 with e filled (the
+   step then fails and changes nothing).  ctx is the caller's. */
 typedef struct GranSource {
-    int (*fn)(void *ctx, const FvMesh *f, double t, double *rho_src, double *mom_src, Err *e);
+    int (*fn)(void *ctx, const FvMesh *f, double t, double *rho_src, double *mom_src, double *T_src, Err *e);
     void *ctx;
 } GranSource;
 
@@ -134,6 +138,8 @@ typedef struct Granular {
                               0 after gran_init, set by the caller at the
                               start, advanced by each gran_step */
     double *src_rho, *src_m;   /* ncells, 3 ncells: the hook's integrals */
+    double *src_T;         /* ncells, model granular: the hook's s_T
+                              integrals (granular.c adds them) */
     double src_total;      /* sum over the steps of dt x the integrated
                               continuity source: mass - mass(start) =
                               src_total - out_total to round-off */

@@ -1,7 +1,9 @@
 /*
 ** mms.c: manufactured-solution convergence studies of solveGranular's
 ** model Newtonian (eq. 5.1 by eq. 4.66, tools/solveGranular/newtonian.h)
-** on cut-and-merged and Voronoi grids, 2-D and 3-D (issue 11).
+** and, with -model granular, of model granular (c, u, T with yield, eq.
+** 2.37-2.39 by eq. 4.66, tools/solveGranular/granular.h) on
+** cut-and-merged and Voronoi grids, 2-D and 3-D (issue 11).
 **
 **   mms [options] KIND INTERP DIV N...
 **   mms -check
@@ -18,10 +20,14 @@
 **           Gauss limitedLinear 1, Gauss vanLeer, for rho and U)
 **   N...    the grid levels, coarse to fine
 **
-** options: -mu MU (0.1), -RsT R (6), -layers L (Voronoi boundary layers,
+** options: -model Newtonian | granular (Newtonian; granular: the solution
+** of mms_exact_gran.h, derived by derive_granular.py, with the closures'
+** coefficients of mms_case.c; -KT K and -T0 T0 change two of them), -mu MU
+** (0.1), -RsT R (6; both model Newtonian's), -layers L (Voronoi boundary layers,
 ** 2), -tol T (steady tolerance, 1e-7), -tmax T (20), -maxCo C (0.5),
 ** -maxSkewness S (mergeCells' quality pass, 4; 0 = off), -expect NAME=P
-** (repeatable; NAME L1_rho, Linf_rho, L1_u or Linf_u: the order P expected
+** (repeatable; NAME L1_rho, Linf_rho, L1_u or Linf_u, model
+** granular L1_c, Linf_c, L1_u, Linf_u, L1_T or Linf_T: the order P expected
 ** of that norm between the last two levels; the program prints a PASS or
 ** FAIL line for each, FAIL also when the last level did not reach the
 ** steady state, and exits 1 on a FAIL).  -check runs the checks of make
@@ -40,8 +46,10 @@
 ** dt, below -tol (else t reaches -tmax, and the table marks t with *).
 ** The errors are taken at the cell nodes (centroids; Voronoi seeds):
 **     L1 = sum_c V_c |e_c| / sum_c V_c,   Linf = max_c |e_c|,
-** e = rho - rho_exact for the density and |u - u_exact| for the velocity,
-** and the observed order between levels N1 < N2 is
+** e = rho - rho_exact for the density and |u - u_exact| for the velocity
+** (model granular: c - c_exact, |u - u_exact| and T - T_exact; the steady
+** test also takes T's change, and the hook hands the model the integrals
+** of s_T too), and the observed order between levels N1 < N2 is
 ** log(e1/e2) / log(N2/N1).  Time is CPU time.
 */
 #include "mem.h"
@@ -73,20 +81,28 @@ static void run_level(const Study *s, Level *lv)
 
 static void print_head(const Study *s)
 {
-    printf("Manufactured solution, %s (%d-D), %s, Gauss %s%s: mu %g, RsT %g, steady to %g (t <= %g), maxCo %g",
-           s->kind, s->dim, s->interp, s->div, strcmp(s->div, "limitedLinear") ? "" : " 1", s->mu, s->RsT, s->tol,
-           s->tmax, s->maxCo);
+    printf("Manufactured solution, %s (%d-D), %s, Gauss %s%s: ", s->kind, s->dim, s->interp, s->div,
+           strcmp(s->div, "limitedLinear") ? "" : " 1");
+    if (s->granular)
+        printf("model granular (eta0 %g, lambda0 %g, eps0 %g, cMax %g, c0 %g, T0 %g, KT %.6g)", s->k.eta0, s->k.lambda0,
+               s->k.eps0, s->k.cmax, s->k.c0, s->k.T0, s->k.KT);
+    else
+        printf("mu %g, RsT %g", s->mu, s->RsT);
+    printf(", steady to %g (t <= %g), maxCo %g", s->tol, s->tmax, s->maxCo);
     if (s->voronoi) printf(", %d boundary layers", s->layers);
     else printf(", merged with M_V 1/2, maxSkewness %g", s->max_skewness);
-    printf("\n     N   cells  steps       t   change  L1 rho     order  Linf rho   order  L1 |u|     order  "
-           "Linf |u|   order  mass chg    time\n");
+    printf("\n     N   cells  steps       t   change  L1 %-4s    order  Linf %-4s  order  L1 |u|     order  "
+           "Linf |u|   order",
+           s->granular ? "c" : "rho", s->granular ? "c" : "rho");
+    if (s->granular) printf("  L1 T       order  Linf T     order");
+    printf("  mass chg    time\n");
 }
 
 static void print_row(const Study *s, const Level *lv, const Level *prev)
 {
     printf("  %4d %7d %6d %6.2f%s %8.1e", lv->N, lv->cells, lv->steps, lv->t, lv->rate > s->tol ? "*" : " ",
            lv->rate);
-    for (int q = 0; q < MMS_NQ; q++) {
+    for (int q = 0; q < (s->granular ? MMS_NQ : 4); q++) {
         printf("  %.3e", lv->err[q]);
         if (prev) printf(" %5.2f", order(prev, lv, q));
         else printf("     -");
@@ -95,20 +111,24 @@ static void print_row(const Study *s, const Level *lv, const Level *prev)
     fflush(stdout);
 }
 
-static const char *const qname[MMS_NQ] = {"L1_rho", "Linf_rho", "L1_u", "Linf_u"};
+static const char *const qname_newt[MMS_NQ] = {"L1_rho", "Linf_rho", "L1_u", "Linf_u", NULL, NULL};
+static const char *const qname_gran[MMS_NQ] = {"L1_c", "Linf_c", "L1_u", "Linf_u", "L1_T", "Linf_T"};
+static const char *const *qnames(const Study *s) { return s->granular ? qname_gran : qname_newt; }
 
 /* PASS/FAIL per expected order between the last two levels. */
 static int verdict(const Study *s, const Level *lv, int n)
 {
     int nfail = 0;
+    const char *const *qname = qnames(s);
     for (int q = 0; q < MMS_NQ; q++) {
         double want = s->expect[q];
         if (want < 0 || n < 2) continue;
         double o = order(&lv[n - 2], &lv[n - 1], q);
         int steady = lv[n - 1].rate <= s->tol, ok = o >= want && steady;
         nfail += !ok;
-        printf("%s mms_%s_%s_%s_%s: observed order %.2f between N = %d and %d (expected >= %.2f)%s\n",
-               ok ? "PASS" : "FAIL", s->kind, s->interp, s->div, qname[q], o, lv[n - 2].N, lv[n - 1].N, want,
+        printf("%s mms_%s%s_%s_%s_%s: observed order %.2f between N = %d and %d (expected >= %.2f)%s\n",
+               ok ? "PASS" : "FAIL", s->granular ? "granular_" : "", s->kind, s->interp, s->div, qname[q], o,
+               lv[n - 2].N, lv[n - 1].N, want,
                steady ? "" : "; the last level is not steady");
     }
     return nfail;
@@ -116,19 +136,22 @@ static int verdict(const Study *s, const Level *lv, int n)
 
 static void usage(void)
 {
-    printf("usage: mms [-mu MU] [-RsT R] [-layers L] [-tol T] [-tmax T] [-maxCo C] [-maxSkewness S] "
-           "[-expect L1_rho|Linf_rho|L1_u|Linf_u=P]... "
+    printf("usage: mms [-model Newtonian|granular] [-mu MU] [-RsT R] [-KT K] [-T0 T0] [-layers L] [-tol T] "
+           "[-tmax T] [-maxCo C] [-maxSkewness S] "
+           "[-expect L1_rho|Linf_rho|L1_c|Linf_c|L1_u|Linf_u|L1_T|Linf_T=P]... "
            "disc-cut|disc-voronoi|ball-cut|ball-voronoi shepard|multilinear upwind|limitedLinear|vanLeer N...\n"
            "       mms -check\n");
     exit(2);
 }
 
-/* -expect NAME=P: the order P expected of norm NAME (qname). */
+/* -expect NAME=P: the order P expected of norm NAME (qnames of the
+   model, which parse reads first). */
 static void expect(Study *s, const char *arg)
 {
+    const char *const *qname = qnames(s);
     for (int q = 0; q < MMS_NQ; q++) {
-        size_t n = strlen(qname[q]);
-        if (!strncmp(arg, qname[q], n) && arg[n] == '=') {
+        size_t n = qname[q] ? strlen(qname[q]) : 0;
+        if (n && !strncmp(arg, qname[q], n) && arg[n] == '=') {
             s->expect[q] = atof(arg + n + 1);
             return;
         }
@@ -139,14 +162,18 @@ static void expect(Study *s, const char *arg)
 /* Options and the three words into s; returns the index of the first N. */
 static int parse(int argc, char **argv, Study *s)
 {
-    static const char *const opt[] = {"-mu", "-RsT", "-tol", "-tmax", "-maxCo", "-maxSkewness"};
-    double *dst[] = {&s->mu, &s->RsT, &s->tol, &s->tmax, &s->maxCo, &s->max_skewness};
+    static const char *const opt[] = {"-mu", "-RsT", "-KT", "-T0", "-tol", "-tmax", "-maxCo", "-maxSkewness"};
+    double *dst[] = {&s->mu, &s->RsT, &s->k.KT, &s->k.T0, &s->tol, &s->tmax, &s->maxCo, &s->max_skewness};
     int i = 1, nopt = (int)(sizeof opt / sizeof opt[0]);
+    for (int j = 1; j + 1 < argc && argv[j][0] == '-'; j += 2) /* the model first: -expect's names depend on it */
+        if (!strcmp(argv[j], "-model")) s->granular = !strcmp(argv[j + 1], "granular");
     while (i + 1 < argc && argv[i][0] == '-') {
         int j = 0;
         while (j < nopt && strcmp(argv[i], opt[j])) j++;
         if (j < nopt) *dst[j] = atof(argv[i + 1]);
         else if (!strcmp(argv[i], "-layers")) s->layers = atoi(argv[i + 1]);
+        else if (!strcmp(argv[i], "-model") && (!strcmp(argv[i + 1], "granular") || !strcmp(argv[i + 1], "Newtonian")))
+            s->granular = !strcmp(argv[i + 1], "granular");
         else if (!strcmp(argv[i], "-expect")) expect(s, argv[i + 1]);
         else usage();
         i += 2;

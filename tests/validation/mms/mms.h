@@ -7,23 +7,30 @@
 #define KIESEL_MMS_H
 
 #include "mms_exact.h"
+#include "mms_exact_gran.h"
 #include "newtonian.h"
 
-enum { MMS_NQ = 4 };   /* the error norms: L1 rho, Linf rho, L1 |u|, Linf |u| */
+/* The error norms: L1 rho, Linf rho, L1 |u|, Linf |u| (model granular: c
+   for rho) and, model granular only, L1 T, Linf T. */
+enum { MMS_NQ = 6 };
 
 typedef struct Study {
     const char *kind, *interp, *div;   /* mms.c's words */
+    int granular;                      /* -model granular (else Newtonian) */
     int dim, voronoi, layers;
     double mu, RsT, tol, tmax, maxCo;
     double max_skewness;               /* mergeCells' maxSkewness */
     double expect[MMS_NQ];             /* expected orders by norm, < 0: none */
-    MmsParams p;
+    MmsParams p;                       /* model Newtonian's solution */
+    GranCoeffs k;                      /* model granular's closures */
+    MmsGranParams pg;                  /* and its solution */
 } Study;
 
-/* The steady source integrals the hook hands the model. */
+/* The steady source integrals the hook hands the model (T: model
+   granular's s_T). */
 typedef struct MmsSource {
     int n;
-    double *rho, *m;
+    double *rho, *m, *T;
 } MmsSource;
 
 /* One grid level: the grid, the fields at the exact state, the model
@@ -32,7 +39,7 @@ typedef struct MmsCase {
     Mesh m;
     FvMesh f;
     Interp ip;
-    Field rho, U;
+    Field rho, U, T;                   /* T: model granular's Theta */
     Dict *sol;
     MmsSource src;
     Granular g;
@@ -46,8 +53,9 @@ typedef struct Level {
 
 /* The defaults of mms.c's options and the solution's parameters. */
 void mms_study_default(Study *s);
-/* The exact solution at x (2-D or 3-D). */
+/* The exact solution at x (2-D or 3-D), model Newtonian's and granular's. */
 void mms_exact(const Study *s, const double x[3], MmsPoint *o);
+void mms_gran_exact(const Study *s, const double x[3], MmsGranPoint *o);
 
 /* Level N of study s: grid, fields, model.  A failure prints a FAIL line
    and ends the program. */

@@ -1,0 +1,122 @@
+"""derive_granular.py: the manufactured solution of model granular in
+tests/validation/mms and its source terms, derived symbolically with sympy
+and written as C (mms_exact_gran.c, next to this file).  Run it again
+after changing the solution or the model's continuous form:
+python3 derive_granular.py > mms_exact_gran.c
+
+The solution (doc/validation.md, "Granular manufactured solutions"): a
+steady flow in the disc (2-D) or ball (3-D) |x - c| < R with noSlip walls,
+in the scaled coordinates X = (x - c)/R, q = |X|^2:
+
+    c   = cm + ac X_1 (1 - q/3) + bc (1 - q)^2      dc/dn = 0 at q = 1
+    T   = Tm + aT X_2 (1 - q/3) + bT (1 - q)^2      dT/dn = 0 at q = 1
+    phi = A (1 - q)^2 (1 + beta X_2)                grad phi = 0 at q = 1
+    m   = c u = grad phi x e                         div m = 0, u = 0 at q = 1
+    (2-D: e = e_z; 3-D: e = (1, 2, 2)/3)
+
+so that the walls' conditions are the model's own (U noSlip, alpha and
+Theta zeroGradient).  The closures are fv/closure.h's with the yield part
+active everywhere (the program keeps c > c0 in the domain, so the
+Heaviside factor is 1 and every term is smooth):
+
+    g = 1/(1 - c/cmax),  Y = T0 (c - c0),  p = c g T + Y g,
+    eta = eta0 g (c sqrt T + Y/sqrt T),  lambda = lambda0 g (c sqrt T + Y/sqrt T),
+    eps = eps0 g (sqrt T + Y/(c sqrt T))                       (eq. 2.15-2.29)
+
+The sources are those of the continuous form the discrete model solves
+(eq. 2.37-2.39 with the spec's corrections: the asymmetric stress
+(div sigma)_i = div(eta grad u_i), K_T on heating and conduction, eps c T
+dissipation; granular.h):
+
+    s_c = div(c u)                                           (0 by construction)
+    s_m = div(c u u^T) - div(eta grad u_i) + grad p
+    s_T = div(c T u) - K_T (eta kappa:kappa + div(lambda grad T)) + eps c T,
+          kappa_ij = du_i/dx_j
+"""
+import sympy as sp
+
+x, y, z = sp.symbols('x y z', real=True)
+cx, cy, cz, R, A, beta = sp.symbols('cx cy cz R A beta', real=True)
+cm, ac, bc, Tm, aT, bT = sp.symbols('cm ac bc Tm aT bT', real=True)
+eta0, lambda0, eps0, cmax, c0, T0, KT = sp.symbols('eta0 lambda0 eps0 cmax c0 T0 KT', positive=True)
+
+
+def closures(c, T):
+    g = 1 / (1 - c / cmax)
+    Y = T0 * (c - c0)
+    p = c * g * T + Y * g
+    rt = sp.sqrt(T)
+    eta = eta0 * g * (c * rt + Y / rt)
+    lam = lambda0 * g * (c * rt + Y / rt)
+    eps = eps0 * g * (rt + Y / (c * rt))
+    return p, eta, lam, eps
+
+
+def solution(dim):
+    v = [x, y, z]
+    X = [(x - cx) / R, (y - cy) / R, (z - cz) / R][:dim]
+    q = sum(Xi ** 2 for Xi in X)
+    c = cm + ac * X[0] * (1 - q / 3) + bc * (1 - q) ** 2
+    T = Tm + aT * X[1] * (1 - q / 3) + bT * (1 - q) ** 2
+    phi = A * (1 - q) ** 2 * (1 + beta * X[1])
+    gphi = [sp.diff(phi, v[k]) for k in range(3)]
+    e = [0, 0, 1] if dim == 2 else [sp.Rational(1, 3), sp.Rational(2, 3), sp.Rational(2, 3)]
+    m = [gphi[1] * e[2] - gphi[2] * e[1], gphi[2] * e[0] - gphi[0] * e[2], gphi[0] * e[1] - gphi[1] * e[0]]
+    u = [mk / c for mk in m]
+    p, eta, lam, eps = closures(c, T)
+    src_c = sum(sp.diff(m[k], v[k]) for k in range(3))
+    src_m = [sum(sp.diff(m[i] * u[j], v[j]) - sp.diff(eta * sp.diff(u[i], v[j]), v[j]) for j in range(3)) +
+             sp.diff(p, v[i]) for i in range(3)]
+    kk = sum(sp.diff(u[i], v[j]) ** 2 for i in range(3) for j in range(3))
+    cond = sum(sp.diff(lam * sp.diff(T, v[j]), v[j]) for j in range(3))
+    src_T = sum(sp.diff(m[j] * T, v[j]) for j in range(3)) - KT * (eta * kk + cond) + eps * c * T
+    heat = KT * eta * kk
+    return [c, T] + u + [src_c] + src_m + [src_T, heat]
+
+
+def emit(dim):
+    names = (['o->c', 'o->T'] + ['o->u[%d]' % k for k in range(3)] + ['o->src_c'] +
+             ['o->src_m[%d]' % k for k in range(3)] + ['o->src_T', 'o->heat'])
+    reps, red = sp.cse(solution(dim), symbols=sp.numbered_symbols('t'), optimizations='basic')
+    print('void mms_gran_exact_%dd(const MmsGranParams *p, const GranCoeffs *k, const double xp[3], '
+          'MmsGranPoint *o)' % dim)
+    print('{')
+    print('    const double x = xp[0], y = xp[1], z = xp[2], cx = p->c[0], cy = p->c[1], cz = p->c[2];')
+    print('    const double R = p->R, A = p->A, beta = p->beta, cm = p->cm, ac = p->ac, bc = p->bc;')
+    print('    const double Tm = p->Tm, aT = p->aT, bT = p->bT;')
+    print('    const double eta0 = k->eta0, lambda0 = k->lambda0, eps0 = k->eps0, cmax = k->cmax, c0 = k->c0;')
+    print('    const double T0 = k->T0, KT = k->KT;')
+    print('    (void)z, (void)cz;')
+    used = set()
+    for s, ex in reps:
+        used |= ex.free_symbols
+    for ex in red:
+        used |= ex.free_symbols
+    for s in (eta0, lambda0, eps0, c0, T0, KT, beta, A, ac, bc, aT, bT, cm, Tm):
+        if s not in used:
+            print('    (void)%s;' % s)
+    for s, ex in reps:
+        print('    const double %s = %s;' % (s, sp.ccode(ex)))
+    for n, ex in zip(names, red):
+        print('    %s = %s;' % (n, sp.ccode(ex)))
+    print('}')
+
+
+def main():
+    print('/*')
+    print('** mms_exact_gran.c: GENERATED by derive_granular.py (sympy %s); do not' % sp.__version__)
+    print('** edit, run python3 derive_granular.py > mms_exact_gran.c instead.  The')
+    print('** manufactured solution of model granular in tests/validation/mms and its')
+    print('** source terms (mms_exact_gran.h).')
+    print('*/')
+    print('#include "mms_exact_gran.h"')
+    print()
+    print('#include <math.h>')
+    print()
+    emit(2)
+    print()
+    emit(3)
+
+
+if __name__ == '__main__':
+    main()
