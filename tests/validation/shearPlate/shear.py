@@ -22,8 +22,8 @@ along the plates and of T: L1 = sum V |e| / sum V, Linf = max |e|, with
 observed orders beside the thesis's.
 
 usage: shear.py BIN WORKDIR [quick | noSlip partialSlip gravity]
-  quick: noSlip only, grid-aligned h = W/4, W/8 against W/32 and
-  rotated upwind at W/8 (the test of make test).
+  quick: noSlip only, grid-aligned h = W/4, W/8 against W/16 and
+  rotated upwind and limitedLinear 1 at W/8 (the test of make test).
 """
 import math, os, re, subprocess, sys, time
 
@@ -282,13 +282,18 @@ def main():
     quick = args == ['quick']
     nfail = 0
     if quick:
-        ref, res = study(binp, work, 'noSlip', [W / 4, W / 8], [], W / 32, [])
+        k = SCHEMES
+        ref, res = study(binp, work, 'noSlip', [W / 4, W / 8], [W / 8], W / 16, k)
         report('noSlip', ref, res, '5.5 (quick)', None)
         a, b = res['aligned']
         for key, what in (('u1', 'velocity L1'), ('T1', 'T L1')):
             o = order(a['e'][key], b['e'][key], a['h'], b['h'])
             nfail += judge('quick_aligned_%s_order' % key, o >= 0.8,
                            'grid-aligned %s order %.3f between h = W/4 and W/8 (want >= 0.8)' % (what, o))
+            up, ll = res['upwind'][0]['e'][key], res['limitedLinear 1'][0]['e'][key]
+            nfail += judge('quick_rotated_%s_limitedLinear' % key, ll <= 0.6 * up,
+                           'rotated h = W/8: %s limitedLinear 1 %.3e, upwind %.3e (want <= 0.6 x upwind)'
+                           % (what, ll, up))
         return 1 if nfail else 0
     hs = [0.01, 0.005, 0.0025]
     variants = [(v, no) for v, no in (('noSlip', '5.5'), ('partialSlip', '5.6'), ('gravity', '5.7'))
