@@ -35,7 +35,8 @@ N = math.hypot(P, Q)
 TX, TY = Q / N, P / N                    # along the plates (rotated)
 DELTA = 0.2                              # the lower wall 0.2 h above a grid corner (inclinedChannel)
 GRAV = 1.0
-COEFFS = ('eta0 0.00102573; epsilon0 216.649; lambda0 0.00034; cMax 0.8; c0 0.3; T0 0; KT 0.666667;')
+COEFFS = ('eta0 0.00102573; epsilon0 216.649; lambda0 0.00034; cMax 0.8; c0 0.3; T0 0; KT 0.666667; deltaC %g;')
+DELTAC = 1e-6                            # the default: c <= cMax - 1e-6 (the cold bulk packs to it)
 SCHEMES = [('upwind', 'Gauss upwind'), ('limitedLinear 1', 'Gauss limitedLinear 1')]
 # Thesis Tables 5.5-5.7: h -> (Cart vel L1, Linf, ICCM vel L1, Linf, Cart T L1, Linf, ICCM T L1, Linf)
 THESIS = {
@@ -98,7 +99,7 @@ def write_case(d, h, variant, rotated, scheme):
         w('constant/g', hdr('g', 'uniformDimensionedVectorField') +
           'dimensions [0 1 -2 0 0 0 0]; value (%.17g %.17g 0);\n' % (GRAV * t[0], GRAV * t[1]))
     w('constant/granularProperties', hdr('granularProperties') +
-      'model granular; granularCoeffs { %s }\n' % COEFFS)
+      'model granular; granularCoeffs { %s }\n' % (COEFFS % DELTAC))
     w('system/controlDict', hdr('controlDict') +
       'application solveGranular; startFrom latestTime; startTime 0; stopAt endTime; endTime %r; deltaT 1e-5; '
       'adjustTimeStep yes; maxCo 0.25; writeControl adjustableRunTime; writeInterval %r; writeFormat ascii; '
