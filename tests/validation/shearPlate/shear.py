@@ -163,6 +163,9 @@ def run(binp, d, h, variant, rotated, scheme):
         with open(os.path.join(d, 'log.' + tool), 'w') as log:
             if subprocess.call([os.path.join(binp, tool), '-case', d], stdout=log, stderr=subprocess.STDOUT):
                 sys.exit('FAIL shearPlate: %s failed in %s' % (tool, d))
+    if not os.path.isdir(os.path.join(d, '%g' % TEND)):  # stopped early (a signal): the log says why
+        sys.exit('FAIL shearPlate: solveGranular stopped before t = %g in %s: %s' % (
+            TEND, d, open(os.path.join(d, 'log.solveGranular')).read().strip().split('\n')[-2:]))
     return load(d, h, rotated, time.time() - t0)
 
 
