@@ -222,12 +222,15 @@ void granmodel_limit_c(Granular *g)
 
 /* U's boundary values with the wall velocity u_S at impermeable walls:
    slip walls are at rest (u_S = 0), partialSlip walls move at their
-   wallVelocity, the others' values are their wall velocities already (granular.h: the heating sees the whole gradient). */
+   wallVelocity, the others' values are their wall velocities already (granular.h: the heating sees the whole gradient).
+   With heatingSchemes' wallVelocity boundary the boundary values u_B
+   themselves (granular.h). */
 static void wall_values(Granular *g)
 {
     const FvMesh *f = g->f;
     double *ub = g->gm.ub;
     bc_values(&g->bc_U, g->U->v, ub);
+    if (g->heat_wall == GRAN_HEAT_BOUNDARY) return;
     for (int b = 0; b < f->nboundary; b++) {
         if (f->empty_face[f->ninternal + b] || !g->wall[b]) continue;
         const BcPatch *bp = &g->bc_U.patch[f->face_patch[b]];

@@ -37,7 +37,14 @@
 ** solutions showed (doc/theory.md §12, doc/validation.md).  M_C is
 ** geometry, its inverse kept per cell.  The product (du/dn_f)(n_f)_j does
 ** not depend on the normal's orientation (spec correction 5), so each face
-** adds the same term to its two cells.  The boundary condition of T is
+** adds the same term to its two cells.  fvSchemes' heatingSchemes
+** { wallVelocity boundary; } (ours) takes U's boundary values u_B instead
+** of u_S at the walls: the same at walls that stick, but at a sliding wall
+** (slip, partialSlip beyond its Coulomb bound) the jump u_I - u_S over h_f
+** heats the wall cell by eta ((u_I - u_S)/h_f)^2, a heat per wall area
+** eta jump^2 / h that grows without bound as h -> 0 (the grid-aligned
+** shear plate's T does not converge, doc/validation.md); with u_B it is
+** the gradient inside the grain.  The boundary condition of T is
 ** zeroGradient at walls (spec §1.4); at an inflow with fixed c the
 ** advected state is c_F T_C.
 **

@@ -35,6 +35,7 @@ static const ArgDict dicts[] = {
      "fields: alpha (volume fraction c), U, Theta (granular temperature T [m^2/s^2]); p is written"},
     {"system/fvSchemes: divSchemes", gran_div_keys, NULL},
     {"system/fvSchemes: gravitySchemes", gran_gravity_keys, NULL},
+    {"system/fvSchemes: heatingSchemes", gran_heating_keys, NULL},
     {"system/fvSchemes: interpolationSchemes", interp_keys, NULL},
     {"system/fvSchemes: interpolationSchemes.shepardCoeffs", interp_shepard_keys, NULL},
     {"system/fvSolution: solvers.Ux, Uy, Uz (model granular: and Theta)", linsolve_keys, NULL},

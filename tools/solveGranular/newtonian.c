@@ -61,6 +61,16 @@ const DictKey gran_gravity_keys[] = {
      "rest state on cut and Voronoi grids); the same when g = 0"},
     {NULL, NULL, NULL}};
 
+const char *const gran_heating_names[] = {"wall", "boundary", NULL};
+
+const DictKey gran_heating_keys[] = {
+    {"wallVelocity", "wall",
+     "model granular's viscous heating at walls: wall (the wall's own velocity u_S at slip and partialSlip walls, "
+     "the thesis's: a sliding wall's jump heats its cells by eta (jump/h)^2, which grows without bound as h -> "
+     "0) | boundary (the boundary value u_B the momentum diffusion uses: the same at sticking walls, the "
+     "gradient inside the grain at sliding ones; ours)"},
+    {NULL, NULL, NULL}};
+
 static int read_div(const Dict *fvschemes, TvdScheme div[3], Err *e)
 {
     static const char *const keys[3] = {"div(phi,rho)", "div(phi,U)", "div(phi,Theta)"};
@@ -91,10 +101,21 @@ static int read_gravity(const Dict *fvschemes, GranSchemes *sch, Err *e)
     return dict_choice_or(d, "default", gran_gravity_names, GRAN_WELL_BALANCED, &sch->gravity, e);
 }
 
+static int read_heating(const Dict *fvschemes, GranSchemes *sch, Err *e)
+{
+    sch->heat_wall = GRAN_HEAT_WALL;
+    const Dict *d = dict_subdict_opt(fvschemes, "heatingSchemes");
+    if (!d) return 0;
+    if (dict_check_keys(d, gran_heating_keys, e)) return -1;
+    return dict_choice_or(d, "wallVelocity", gran_heating_names, GRAN_HEAT_WALL, &sch->heat_wall, e);
+}
+
 int gran_read_schemes(const Dict *fvschemes, GranSchemes *sch, Err *e)
 {
     sch->div[2].kind = TVD_UPWIND;
-    return read_div(fvschemes, sch->div, e) || read_gravity(fvschemes, sch, e) ? -1 : 0;
+    return read_div(fvschemes, sch->div, e) || read_gravity(fvschemes, sch, e) || read_heating(fvschemes, sch, e)
+               ? -1
+               : 0;
 }
 
 
@@ -190,6 +211,7 @@ int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProp
     g->ip = ip;
     g->pr = *pr;
     g->gravity = sch->gravity;
+    g->heat_wall = sch->heat_wall;
     static const double none[3] = {0, 0, 0};
     const double *gw = g->gravity == GRAN_WELL_BALANCED ? pr->g : none;
     if (profiled(g))

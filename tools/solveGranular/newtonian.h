@@ -77,12 +77,15 @@
 #include "tvd.h"
 
 enum { GRAN_WELL_BALANCED, GRAN_CELL_SOURCE };
+enum { GRAN_HEAT_WALL, GRAN_HEAT_BOUNDARY };   /* heatingSchemes' wallVelocity (granular.h) */
 
 /* The schemes of fvSchemes the model reads. */
 typedef struct GranSchemes {
     TvdScheme div[3];      /* divSchemes' div(phi,rho), div(phi,U) and
                               div(phi,Theta) (model granular: of c T) */
     int gravity;           /* gravitySchemes: GRAN_WELL_BALANCED, ... */
+    int heat_wall;         /* heatingSchemes' wallVelocity: GRAN_HEAT_WALL
+                              (u_S, the thesis's) or GRAN_HEAT_BOUNDARY (u_B) */
 } GranSchemes;
 
 /* A source hook: fn fills, for each of the f->ncells cells c, rho_src[c]
@@ -106,6 +109,7 @@ typedef struct Granular {
     TvdScheme div_rho, div_U, div_T;   /* divSchemes' div(phi,rho), div(phi,U), div(phi,Theta) */
     Tvd tvd;               /* their grid data (nothing when both are upwind) */
     int gravity;           /* GRAN_WELL_BALANCED or GRAN_CELL_SOURCE */
+    int heat_wall;         /* GRAN_HEAT_WALL or GRAN_HEAT_BOUNDARY */
     Hydro hy;              /* the face pressure weights and gravity vectors
                               (g = 0 in them for GRAN_CELL_SOURCE) */
     FvMatrix M;
@@ -153,12 +157,15 @@ typedef struct Granular {
 extern const DictKey gran_div_keys[];
 extern const DictKey gran_gravity_keys[];
 extern const char *const gran_gravity_names[];
+extern const DictKey gran_heating_keys[];
+extern const char *const gran_heating_names[];
 
 /* fvSchemes' schemes into sch: divSchemes into div[0] (div(phi,rho)) and
    div[1] (div(phi,U)), each entry "Gauss upwind", "Gauss limitedLinear k"
    or "Gauss vanLeer" (fv/tvd.h), a missing one taking default's (default
    Gauss upwind; default none requires both); gravitySchemes' default
-   wellBalanced | cellSource (absent: wellBalanced).  Another scheme or
+   wellBalanced | cellSource (absent: wellBalanced); heatingSchemes'
+   wallVelocity wall | boundary (absent: wall).  Another scheme or
    keyword fails with file:line. */
 int gran_read_schemes(const Dict *fvschemes, GranSchemes *sch, Err *e);
 

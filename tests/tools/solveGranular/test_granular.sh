@@ -40,7 +40,8 @@
 #     and p identical;
 #   - bad input: a missing cMax, c0 >= cMax, epsilon0 with grainDiameter,
 #     alpha above cMax, Theta <= 0, fvSolution
-#     without Theta, no Theta file: each an error, exit 1, nothing written.
+#     without Theta, no Theta file, an unknown heatingSchemes wallVelocity:
+#     each an error, exit 1, nothing written.
 set -u
 . "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
 BIN=${KIESEL_BIN:-$(cd "$(dirname "$0")/../../.." && pwd)/bin}
@@ -258,3 +259,4 @@ bad bad_alpha_high "sed -i 's/uniform 0.3;/uniform 0.7;/' 0/alpha" 'alpha = 0.7 
 bad bad_theta_zero "sed -i 's/uniform 1;/uniform 0;/' 0/Theta" 'Theta = 0 in cell'
 bad bad_no_theta_solver "sed -i 's/\"U.\\*|Theta\"/\"U.*\"/' system/fvSolution" 'Theta'
 bad bad_no_theta_file "rm 0/Theta" 'Theta'
+bad bad_heating "echo 'heatingSchemes { wallVelocity interior; }' >>system/fvSchemes" 'fvSchemes:[0-9]*:.*interior'
