@@ -221,6 +221,8 @@ bad criterion "system/mergeCellsDict:2:" 'criterion normals;'
 bad criterion_choices "normalSpacing" 'criterion normals;'
 bad maxiter "system/mergeCellsDict:3: maxIter must be >= 0, found -1" $'threshold 0.5;\nmaxIter -1;'
 bad syntax "system/mergeCellsDict:" 'threshold 0.5'
+bad minratio_range "system/mergeCellsDict:3: minRatio must be in [0, threshold), found 0.5" $'threshold 0.5;\nminRatio 0.5;'
+bad minratio_negative "system/mergeCellsDict:2: minRatio must be in [0, threshold), found -0.1" 'minRatio -0.1;'
 
 # a grid without Cartesian parents
 mkdir -p np/system np/constant
@@ -235,7 +237,8 @@ check missing_grid test $? -ne 0
 check extra_argument test $? -ne 0
 
 "$BIN/mergeCells" -help >help 2>&1
-grep -q '^  threshold  *0.5 ' help && grep -q '^  criterion  *normal ' help && grep -q '^  maxIter  *10 ' help
+grep -q '^  threshold  *0.5 ' help && grep -q '^  criterion  *normal ' help && grep -q '^  maxIter  *10 ' help &&
+    grep -q '^  minRatio  *0.01 ' help
 check help_keywords test $? -eq 0
 
 # ---- chain, and unresolved cells listed ----
