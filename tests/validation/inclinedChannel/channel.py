@@ -29,33 +29,40 @@ SCHEMES = [('upwind', 'Gauss upwind'), ('limitedLinear 1', 'Gauss limitedLinear 
 def hdr(o, c='dictionary'):
     return 'FoamFile { version 2.0; format ascii; class %s; object %s; }\n' % (c, o)
 
-def write_case(d, h, parallel, scheme='Gauss upwind'):
-    for s in ('system', 'constant', '0'): os.makedirs(os.path.join(d, s), exist_ok=True)
-    def w(f, s): open(os.path.join(d, f), 'w').write(s)
+def write_grid(w, h, width, rotated):
+    """The periodic channel of the given width with w(file, text): a block
+    grid of 5 x width/h cells between the walls, or, rotated, the walls at
+    slope P/Q (the lower one DELTA h above a grid corner) cut from one
+    period of Q cells, cyclic with the translation (Q h, P h), and merged
+    at M_V = 1/2.  shearPlate's shear.py builds its plates with it too."""
     side = ('boundary { xMin { name left; type cyclic; neighbourPatch right; } '
             'xMax { name right; type cyclic; neighbourPatch left; } %s '
             'zMin { name frontAndBack; type empty; } zMax { name frontAndBack; type empty; } }\n')
-    if parallel:
-        nx, ny = 5, int(round(W / h))
+    if not rotated:
+        nx, ny = 5, int(round(width / h))
         w('system/blockGridDict', hdr('blockGridDict') +
           'x { segments ((%r %d 1)); } y { segments ((%r %d 1)); } z { start %r; segments ((%r 1 1)); }\n'
-          % (nx * h, nx, W, ny, -h / 2, h / 2) +
+          % (nx * h, nx, width, ny, -h / 2, h / 2) +
           side % 'yMin { name lowerWall; type wall; } yMax { name upperWall; type wall; }')
-        g = (G, 0.0)
-    else:
-        n = math.hypot(P, Q)
-        wc, dl = W * n / Q, DELTA * h
-        ny = int(math.ceil((P * h + wc) / h)) + 2
-        w('system/blockGridDict', hdr('blockGridDict') +
-          'x { segments ((%r %d 1)); } y { start %r; segments ((%r %d 1)); } z { start %r; segments ((%r 1 1)); }\n'
-          % (Q * h, Q, -h, (ny - 1) * h, ny, -h / 2, h / 2) +
-          side % 'yMin { name box; type wall; } yMax { name box; type wall; }')
-        w('system/geometryDict', hdr('geometryDict') +
-          'surfaces { lowerWall { type wall; flow outside; shape halfSpace; point (0 %.17g 0); normal (%d %d 0); }\n'
-          ' upperWall { type wall; flow outside; shape halfSpace; point (0 %.17g 0); normal (%d %d 0); } }\n'
-          % (dl, -P, Q, dl + wc, P, -Q))
-        w('system/mergeCellsDict', hdr('mergeCellsDict') + 'threshold 0.5;\n')
-        g = (G * Q / n, G * P / n)
+        return
+    wc, dl = width * math.hypot(P, Q) / Q, DELTA * h
+    ny = int(math.ceil((P * h + wc) / h)) + 2
+    w('system/blockGridDict', hdr('blockGridDict') +
+      'x { segments ((%r %d 1)); } y { start %r; segments ((%r %d 1)); } z { start %r; segments ((%r 1 1)); }\n'
+      % (Q * h, Q, -h, (ny - 1) * h, ny, -h / 2, h / 2) +
+      side % 'yMin { name box; type wall; } yMax { name box; type wall; }')
+    w('system/geometryDict', hdr('geometryDict') +
+      'surfaces { lowerWall { type wall; flow outside; shape halfSpace; point (0 %.17g 0); normal (%d %d 0); }\n'
+      ' upperWall { type wall; flow outside; shape halfSpace; point (0 %.17g 0); normal (%d %d 0); } }\n'
+      % (dl, -P, Q, dl + wc, P, -Q))
+    w('system/mergeCellsDict', hdr('mergeCellsDict') + 'threshold 0.5;\n')
+
+def write_case(d, h, parallel, scheme='Gauss upwind'):
+    for s in ('system', 'constant', '0'): os.makedirs(os.path.join(d, s), exist_ok=True)
+    def w(f, s): open(os.path.join(d, f), 'w').write(s)
+    write_grid(w, h, W, not parallel)
+    n = math.hypot(P, Q)
+    g = (G, 0.0) if parallel else (G * Q / n, G * P / n)
     w('constant/g', hdr('g', 'uniformDimensionedVectorField') +
       'dimensions [0 1 -2 0 0 0 0]; value (%.17g %.17g 0);\n' % g)
     w('constant/granularProperties', hdr('granularProperties') +

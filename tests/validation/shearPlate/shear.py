@@ -33,7 +33,7 @@ usage: shear.py BIN WORKDIR [quick | noSlip partialSlip partialSlipUB gravity]
 import math, os, re, subprocess, sys, time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'inclinedChannel'))
-from channel import hdr, body, tuples, labels, field, order  # noqa: E402  the case readers
+from channel import DELTA, hdr, body, tuples, labels, field, order, write_grid  # noqa: E402  readers, the grid
 
 W, P, Q, TEND = 0.04, 23, 13, 1.5
 N = math.hypot(P, Q)
@@ -41,7 +41,6 @@ TX, TY = Q / N, P / N                    # along the plates (rotated)
 # The references' h: gravity's as the thesis's (Table 5.7: Cartesian h =
 # 0.00125), because at 0.000625 it takes 1.3e6 steps (11 minutes)
 HREF = {'noSlip': 0.000625, 'partialSlip': 0.000625, 'partialSlipUB': 0.000625, 'gravity': 0.00125}
-DELTA = 0.2                              # the lower wall 0.2 h above a grid corner (inclinedChannel)
 GRAV = 1.0
 COEFFS = ('eta0 0.00102573; epsilon0 216.649; lambda0 0.00034; cMax 0.8; c0 0.3; T0 0; KT 0.666667; deltaC %g;')
 INTERP = 'shepard'                       # ICCM^MC_MS, the thesis's granular tests
@@ -81,29 +80,8 @@ def write_case(d, h, variant, rotated, scheme):
 
     def w(f, s):
         open(os.path.join(d, f), 'w').write(s)
-    side = ('boundary { xMin { name left; type cyclic; neighbourPatch right; } '
-            'xMax { name right; type cyclic; neighbourPatch left; } %s '
-            'zMin { name frontAndBack; type empty; } zMax { name frontAndBack; type empty; } }\n')
-    if not rotated:
-        nx, ny = 5, int(round(W / h))
-        w('system/blockGridDict', hdr('blockGridDict') +
-          'x { segments ((%r %d 1)); } y { segments ((%r %d 1)); } z { start %r; segments ((%r 1 1)); }\n'
-          % (nx * h, nx, W, ny, -h / 2, h / 2) +
-          side % 'yMin { name lowerWall; type wall; } yMax { name upperWall; type wall; }')
-        t = (1.0, 0.0)
-    else:
-        wc, dl = W * N / Q, DELTA * h
-        ny = int(math.ceil((P * h + wc) / h)) + 2
-        w('system/blockGridDict', hdr('blockGridDict') +
-          'x { segments ((%r %d 1)); } y { start %r; segments ((%r %d 1)); } z { start %r; segments ((%r 1 1)); }\n'
-          % (Q * h, Q, -h, (ny - 1) * h, ny, -h / 2, h / 2) +
-          side % 'yMin { name box; type wall; } yMax { name box; type wall; }')
-        w('system/geometryDict', hdr('geometryDict') +
-          'surfaces { lowerWall { type wall; flow outside; shape halfSpace; point (0 %.17g 0); normal (%d %d 0); }\n'
-          ' upperWall { type wall; flow outside; shape halfSpace; point (0 %.17g 0); normal (%d %d 0); } }\n'
-          % (dl, -P, Q, dl + wc, P, -Q))
-        w('system/mergeCellsDict', hdr('mergeCellsDict') + 'threshold 0.5;\n')
-        t = (TX, TY)
+    write_grid(w, h, W, rotated)
+    t = (TX, TY) if rotated else (1.0, 0.0)
     if variant == 'gravity':
         w('constant/g', hdr('g', 'uniformDimensionedVectorField') +
           'dimensions [0 1 -2 0 0 0 0]; value (%.17g %.17g 0);\n' % (GRAV * t[0], GRAV * t[1]))
