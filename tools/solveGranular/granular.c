@@ -95,20 +95,57 @@ static void inverse_sym(const double *a, int skip, double *b)
     for (int q = 0; q < 9; q++) b[q] = det > 0 ? b[q] / det : 0;
 }
 
-/* Each cell's metric of the face-based Jacobian (granular.h): the inverse
-   of M_C = sum_f n_f n_f^T A_f over the faces that are not empty. */
-static void jacobian_metric(const FvMesh *f, double *jmet)
+/* The displacement d from the owner's node to the point across boundary
+   or internal face i (the neighbour's node, a cyclic partner's node moved
+   by the period, a boundary face's centre); returns the cell whose value
+   sits there, or -1 for a boundary value. */
+static int lsq_point(const FvMesh *f, int i, double d[3])
 {
+    double x[3];
+    int n = fvmesh_across(f, i, x);
+    if (n < 0) memcpy(x, f->m->face_centre + 3 * i, sizeof x);
+    const double *o = f->node + 3 * f->m->owner[i];
+    for (int a = 0; a < 3; a++) d[a] = x[a] - o[a];
+    return n;
+}
+
+/* Each cell's metric of the heating's Jacobian (granular.h, by
+   heatingSchemes' jacobian): faceMetric the inverse of M_C = sum_f n_f
+   n_f^T A_f, leastSquares that of sum_f d d^T / |d|^2 (and each face's
+   d / |d|^2 into lsq), faceWeight eq. 4.65's alpha / sum_f A_f on the
+   plane's or space's axes, over the faces that are not empty. */
+static void jacobian_metric(const Granular *g, double *jmet, double *lsq)
+{
+    const FvMesh *f = g->f;
     double *M = mem_calloc(9 * (size_t)f->ncells + 1, sizeof(double));
     for (int i = 0; i < f->nfaces; i++) {
         if (f->empty_face[i]) continue;
-        const double *S = f->m->face_area + 3 * i;
+        double v[3], w;
+        if (g->jacobian == GRAN_JAC_LSQ) {
+            lsq_point(f, i, v);
+            w = 1 / (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+            for (int a = 0; a < 3; a++) lsq[3 * i + a] = v[a] * w;
+        } else {
+            memcpy(v, f->m->face_area + 3 * i, sizeof v);
+            w = 1 / f->mag_sf[i];
+        }
         int cells[2] = {f->m->owner[i], i < f->ninternal ? f->m->neighbour[i] : -1};
         for (int q = 0; q < 2 && cells[q] >= 0; q++)
             for (int a = 0; a < 3; a++)
-                for (int b = 0; b < 3; b++) M[9 * cells[q] + 3 * a + b] += S[a] * S[b] / f->mag_sf[i];
+                for (int b = 0; b < 3; b++) M[9 * cells[q] + 3 * a + b] += v[a] * v[b] * w;
     }
-    for (int c = 0; c < f->ncells; c++) inverse_sym(M + 9 * c, f->empty_axis, jmet + 9 * c);
+    for (int c = 0; c < f->ncells; c++) {
+        double *W = jmet + 9 * c;
+        if (g->jacobian != GRAN_JAC_THESIS) {
+            inverse_sym(M + 9 * c, f->empty_axis, W);
+            continue;
+        }
+        /* trace(M_C) = sum_f A_f (unit normals) */
+        double sum = M[9 * c] + M[9 * c + 4] + M[9 * c + 8], alpha = f->empty_axis >= 0 ? 2 : 3;
+        memset(W, 0, 9 * sizeof(double));
+        for (int a = 0; a < 3; a++)
+            if (a != f->empty_axis && sum > 0) W[4 * a] = alpha / sum;
+    }
     free(M);
 }
 
@@ -131,7 +168,8 @@ int granmodel_init(Granular *g, Field *T, const Dict *fvsolution, Err *e)
     m->T = T;
     if (bc_init(&m->bc_T, T, g->f, e)) return -1;
     alloc_model(g);
-    jacobian_metric(g->f, m->jmet);
+    if (g->jacobian == GRAN_JAC_LSQ) m->lsq = mem_calloc(3 * (size_t)g->f->nfaces + 1, sizeof(double));
+    jacobian_metric(g, m->jmet, m->lsq);
     if (check_initial(g, e)) return -1;
     m->solved = !g->pr.freezeT;
     /* partialSlip's Coulomb bound (eq. 2.35): the wall pressure (the
@@ -149,7 +187,7 @@ void granmodel_free(GranModel *m)
     if (m->M.off) fvmatrix_free(&m->M);
     if (m->bc_T.fm) bc_free(&m->bc_T);
     void *arr[] = {m->eta_c, m->lam_c, m->eps_c, m->pc, m->cfl, m->T1, m->heat, m->uk, m->eta_f, m->lam_f,
-                   m->speed_f, m->cb, m->Tb, m->etab, m->lamb, m->tb, m->ub, m->jac, m->jmet,
+                   m->speed_f, m->cb, m->Tb, m->etab, m->lamb, m->tb, m->ub, m->jac, m->jmet, m->lsq,
                    m->prof_v, m->prof_p, m->prof_theta, m->grav};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
     memset(m, 0, sizeof *m);
@@ -257,14 +295,44 @@ static double normal_derivative(const Granular *g, int i, int k, const double *u
     return (plus - stencil_apply(s, interp_row(i, INTERP_MINUS), f->ncells, uc, ubk)) / g->op.dist[i];
 }
 
-/* heat[c] = K_T eta_C sum_ij (J_C)_ij^2 with the face-based Jacobian of
-   u^m (eq. 4.65 with the metric M_C^-1, granular.h). */
-static void heating(Granular *g)
+/* Adds component k's differences to the Jacobian's sums m->jac: (du/dn)
+   n A per face (faceMetric, faceWeight: eq. 4.65) or (u_across - u_C) d
+   / |d|^2 (leastSquares).  Either is one number per face and component
+   for both cells (granular.h). */
+static void jacobian_sums(Granular *g, int k)
 {
     GranModel *m = &g->gm;
     const FvMesh *f = g->f;
-    memset(m->jac, 0, sizeof(double) * 9 * (size_t)f->ncells);
-    wall_values(g);
+    for (int i = 0; i < f->nfaces; i++) {
+        if (f->empty_face[i]) continue;
+        double v[3], d;
+        int o = f->m->owner[i];
+        if (g->jacobian == GRAN_JAC_LSQ) {
+            int n = i < f->ninternal ? f->m->neighbour[i] : f->cyc_face[i - f->ninternal];
+            if (i >= f->ninternal && n >= 0) n = f->m->owner[n]; /* the cyclic partner's owner */
+            memcpy(v, m->lsq + 3 * i, sizeof v);
+            d = (n >= 0 ? m->uk[n] : m->tb[i - f->ninternal]) - m->uk[o];
+        } else {
+            memcpy(v, f->m->face_area + 3 * i, sizeof v);
+            d = normal_derivative(g, i, k, m->uk, m->tb);
+        }
+        for (int j = 0; j < 3; j++) m->jac[9 * o + 3 * k + j] += d * v[j];
+        if (i < f->ninternal)
+            for (int j = 0; j < 3; j++) m->jac[9 * f->m->neighbour[i] + 3 * k + j] += d * v[j];
+    }
+}
+
+/* heat[c] = K_T eta_C sum_ij (J_C)_ij^2 with the Jacobian of u^m
+   (eq. 4.65, or its metric or least-squares forms, granular.h). */
+/* heat[c] = K_T / V_C sum_f w eta_f sum_k (du_k/dn)^2 A_f dist_f: the
+   kinetic energy each face's diffusion flux (eq. 4.62) takes out, half to
+   each cell of a two-sided face, all to the owner of a boundary face
+   (faceDissipation, granular.h). */
+static void dissipation_heating(Granular *g)
+{
+    GranModel *m = &g->gm;
+    const FvMesh *f = g->f;
+    memset(m->heat, 0, sizeof(double) * (size_t)f->ncells);
     for (int k = 0; k < 3; k++) {
         if (k == f->empty_axis) continue;
         for (int c = 0; c < f->ncells; c++) m->uk[c] = g->U->v[3 * c + k];
@@ -272,13 +340,30 @@ static void heating(Granular *g)
         for (int i = 0; i < f->nfaces; i++) {
             if (f->empty_face[i]) continue;
             double d = normal_derivative(g, i, k, m->uk, m->tb);
-            const double *S = f->m->face_area + 3 * i;
-            int o = f->m->owner[i];
-            /* (du/dn)(n_j) A: the same for both cells (granular.h) */
-            for (int j = 0; j < 3; j++) m->jac[9 * o + 3 * k + j] += d * S[j];
-            if (i < f->ninternal)
-                for (int j = 0; j < 3; j++) m->jac[9 * f->m->neighbour[i] + 3 * k + j] += d * S[j];
+            double e = m->eta_f[i] * d * d * f->mag_sf[i] * g->op.dist[i];
+            if (fvmesh_two_sided(f, i)) e *= 0.5;
+            m->heat[f->m->owner[i]] += e;
+            if (i < f->ninternal) m->heat[f->m->neighbour[i]] += e;
         }
+    }
+    for (int c = 0; c < f->ncells; c++) m->heat[c] *= g->pr.k.KT / f->m->cell_vol[c];
+}
+
+static void heating(Granular *g)
+{
+    GranModel *m = &g->gm;
+    const FvMesh *f = g->f;
+    wall_values(g);
+    if (g->jacobian == GRAN_JAC_DISS) {
+        dissipation_heating(g);
+        return;
+    }
+    memset(m->jac, 0, sizeof(double) * 9 * (size_t)f->ncells);
+    for (int k = 0; k < 3; k++) {
+        if (k == f->empty_axis) continue;
+        for (int c = 0; c < f->ncells; c++) m->uk[c] = g->U->v[3 * c + k];
+        for (int b = 0; b < f->nboundary; b++) m->tb[b] = m->ub[3 * b + k];
+        jacobian_sums(g, k);
     }
     for (int c = 0; c < f->ncells; c++) {
         const double *D = m->jac + 9 * c, *W = m->jmet + 9 * c;

@@ -94,6 +94,8 @@ typedef struct GranModel {
     double *jac;           /* 9 ncells: the Jacobian's sums (scratch) */
     double *jmet;          /* 9 ncells: the inverse of M_C = sum_f n_f n_f^T A_f
                               over the non-empty faces (the Jacobian's metric) */
+    double *lsq;           /* 3 nfaces, heatingSchemes jacobian leastSquares
+                              only: d / |d|^2 to the point across each face */
     double *ub;            /* 3 nboundary: U's boundary values with u_S at walls */
     FvMatrix M;
     Fvm op;

@@ -62,6 +62,7 @@ const DictKey gran_gravity_keys[] = {
     {NULL, NULL, NULL}};
 
 const char *const gran_heating_names[] = {"wall", "boundary", NULL};
+static const char *const jacobian_names[] = {"faceMetric", "leastSquares", "faceWeight", "faceDissipation", NULL};
 
 const DictKey gran_heating_keys[] = {
     {"wallVelocity", "wall",
@@ -69,6 +70,12 @@ const DictKey gran_heating_keys[] = {
      "the thesis's: a sliding wall's jump heats its cells by eta (jump/h)^2, which grows without bound as h -> "
      "0) | boundary (the boundary value u_B the momentum diffusion uses: the same at sticking walls, the "
      "gradient inside the grain at sliding ones; ours)"},
+    {"jacobian", "faceMetric",
+     "the velocity gradient of the heating: faceMetric ((sum_f du/dn n^T A) M_C^-1, M_C = sum_f n n^T A, from "
+     "the face derivatives of eq. 4.62: exact for a linear u on any cell; ours) | leastSquares (weighted least "
+     "squares over the nodes across the faces and the boundary faces' centres, weights 1/d^2: exact for a "
+     "linear u; ours) | faceWeight (eq. 4.65's weight alpha A_f / sum A: the thesis's, exact on squares and "
+     "cubes only)"},
     {NULL, NULL, NULL}};
 
 static int read_div(const Dict *fvschemes, TvdScheme div[3], Err *e)
@@ -104,10 +111,13 @@ static int read_gravity(const Dict *fvschemes, GranSchemes *sch, Err *e)
 static int read_heating(const Dict *fvschemes, GranSchemes *sch, Err *e)
 {
     sch->heat_wall = GRAN_HEAT_WALL;
+    sch->jacobian = GRAN_JAC_FACE;
     const Dict *d = dict_subdict_opt(fvschemes, "heatingSchemes");
     if (!d) return 0;
-    if (dict_check_keys(d, gran_heating_keys, e)) return -1;
-    return dict_choice_or(d, "wallVelocity", gran_heating_names, GRAN_HEAT_WALL, &sch->heat_wall, e);
+    if (dict_check_keys(d, gran_heating_keys, e) ||
+        dict_choice_or(d, "wallVelocity", gran_heating_names, GRAN_HEAT_WALL, &sch->heat_wall, e))
+        return -1;
+    return dict_choice_or(d, "jacobian", jacobian_names, GRAN_JAC_FACE, &sch->jacobian, e);
 }
 
 int gran_read_schemes(const Dict *fvschemes, GranSchemes *sch, Err *e)
@@ -212,6 +222,7 @@ int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProp
     g->pr = *pr;
     g->gravity = sch->gravity;
     g->heat_wall = sch->heat_wall;
+    g->jacobian = sch->jacobian;
     static const double none[3] = {0, 0, 0};
     const double *gw = g->gravity == GRAN_WELL_BALANCED ? pr->g : none;
     if (profiled(g))

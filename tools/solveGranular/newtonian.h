@@ -78,6 +78,7 @@
 
 enum { GRAN_WELL_BALANCED, GRAN_CELL_SOURCE };
 enum { GRAN_HEAT_WALL, GRAN_HEAT_BOUNDARY };   /* heatingSchemes' wallVelocity (granular.h) */
+enum { GRAN_JAC_FACE, GRAN_JAC_LSQ, GRAN_JAC_THESIS, GRAN_JAC_DISS };   /* heatingSchemes' jacobian (granular.h) */
 
 /* The schemes of fvSchemes the model reads. */
 typedef struct GranSchemes {
@@ -86,6 +87,7 @@ typedef struct GranSchemes {
     int gravity;           /* gravitySchemes: GRAN_WELL_BALANCED, ... */
     int heat_wall;         /* heatingSchemes' wallVelocity: GRAN_HEAT_WALL
                               (u_S, the thesis's) or GRAN_HEAT_BOUNDARY (u_B) */
+    int jacobian;          /* heatingSchemes' jacobian: GRAN_JAC_FACE, ... */
 } GranSchemes;
 
 /* A source hook: fn fills, for each of the f->ncells cells c, rho_src[c]
@@ -110,6 +112,7 @@ typedef struct Granular {
     Tvd tvd;               /* their grid data (nothing when both are upwind) */
     int gravity;           /* GRAN_WELL_BALANCED or GRAN_CELL_SOURCE */
     int heat_wall;         /* GRAN_HEAT_WALL or GRAN_HEAT_BOUNDARY */
+    int jacobian;          /* GRAN_JAC_FACE, GRAN_JAC_LSQ or GRAN_JAC_THESIS */
     Hydro hy;              /* the face pressure weights and gravity vectors
                               (g = 0 in them for GRAN_CELL_SOURCE) */
     FvMatrix M;

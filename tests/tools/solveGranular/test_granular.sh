@@ -19,8 +19,9 @@
 #     1e-9 relative (the face-based Jacobian is exact for a linear field on
 #     whole cells, wall cells included), for K_T = 2/3 and 1.5; and on
 #     8 x 4 rectangular cells (h_x = h_y/2), where eq. 4.65's weight
-#     alpha A_f / sum A_f gave (2/3)^2 of the heating (granular.h: the
-#     metric M_C^-1 makes it exact on any cell);
+#     alpha A_f / sum A_f gives (2/3)^2 of the heating (heatingSchemes
+#     jacobian faceWeight; granular.h: the metrics of faceMetric and
+#     leastSquares make it exact on any cell);
 #   - rest: the closed box rotated 30 degrees to the grid, cut and merged,
 #     and as a Voronoi grid, c = 0.4 uniform with yield (c0 0.3), T = 0.01,
 #     no gravity: max |U| <= 1e-12 after 400 steps (measured 3.7e-21 and
@@ -40,7 +41,8 @@
 #     and p identical;
 #   - bad input: a missing cMax, c0 >= cMax, epsilon0 with grainDiameter,
 #     alpha above cMax, Theta <= 0, fvSolution
-#     without Theta, no Theta file, an unknown heatingSchemes wallVelocity:
+#     without Theta, no Theta file, an unknown heatingSchemes wallVelocity
+#     or jacobian:
 #     each an error, exit 1, nothing written.
 set -u
 . "${KIESEL_TOP:-$(dirname "$0")/../../..}/tests/lib.sh"
@@ -135,14 +137,20 @@ grep -q 'K_T = 0.666667' cooling_yield_0.01/log && pass granular_log_KT || fail 
 
 # ---- viscous heating of a plane shear ----
 # square cells (8 x 8) for both K_T, and rectangular ones (8 x 4: h_x = h_y / 2)
-for run in "0.666666666666666667 8 8" "1.5 8 8" "0.666666666666666667 8 4"; do
-    read -r kt nx ny <<<"$run"
-    c=shear_${kt}_$ny
+# with each heatingSchemes jacobian: faceMetric and leastSquares exact,
+# faceWeight (eq. 4.65's alpha A_f / sum A_f) (2/3)^2 = 4/9 of it
+for run in "0.666666666666666667 8 8 faceMetric 1" "1.5 8 8 faceMetric 1" "0.666666666666666667 8 4 faceMetric 1" \
+           "0.666666666666666667 8 4 leastSquares 1" "0.666666666666666667 8 4 faceWeight 0.444444444444444444" \
+           "0.666666666666666667 8 8 leastSquares 1" "0.666666666666666667 8 8 faceWeight 1"; do
+    read -r kt nx ny jac share <<<"$run"
+    c=shear_${kt}_${ny}_$jac
     name=granular_heating_KT$kt
     [ "$ny" = "$nx" ] || name=granular_heating_rect
+    [ "$jac" = faceMetric ] || name=${name}_$jac
     mkdir -p $c && grid $c $nx $ny 1 1 && "$BIN/blockGrid" -case $c >$c/log.blockGrid 2>&1
     gcase $c 'endTime 1e-6; deltaT 1e-6; writeControl timeStep; writeInterval 1; writeFormat ascii; writePrecision 17;' \
         "eta0 0.01; lambda0 0; epsilon0 0; cMax 0.64; c0 0.5; T0 0; KT $kt;" 0.3 1 noSlip
+    echo "heatingSchemes { jacobian $jac; }" >>$c/system/fvSchemes
     /usr/bin/python3 - $c/0/U $nx $ny <<'EOF'
 import sys
 gamma, nx, ny = 2.0, int(sys.argv[2]), int(sys.argv[3])
@@ -155,11 +163,11 @@ EOF
     sed -i 's/yMin { name walls; type wall; }/yMin { name floor; type wall; }/' $c/system/blockGridDict
     "$BIN/blockGrid" -case $c >$c/log.blockGrid 2>&1
     "$BIN/solveGranular" -case $c >$c/log 2>&1; rc=$?
-    want=$(awk -v kt=$kt 'BEGIN { c = 0.3; g = 1 / (1 - c / 0.64); eta = 0.01 * c * g; printf "%.17g", 1 + 1e-6 * kt * eta * 4 / c }')
+    want=$(awk -v kt=$kt -v s=$share 'BEGIN { c = 0.3; g = 1 / (1 - c / 0.64); eta = 0.01 * c * g; printf "%.17g", 1 + s * 1e-6 * kt * eta * 4 / c }')
     d=$(maxdev $c 1e-06 Theta "$want")
     rl=$(awk -v d=$d -v w=$want 'BEGIN { printf "%.3e", d / (w - 1) }')
-    if [ $rc -eq 0 ] && le "$rl" 1e-9; then pass $name "T^1 - T^0 within $rl of dt K_T eta gamma^2 / c ($nx x $ny cells)"
-    else fail $name "rc $rc, relative error $rl ($nx x $ny cells); $(tail -n 2 $c/log)"; fi
+    if [ $rc -eq 0 ] && le "$rl" 1e-9; then pass $name "T^1 - T^0 within $rl of $share dt K_T eta gamma^2 / c ($nx x $ny cells, jacobian $jac)"
+    else fail $name "rc $rc, relative error $rl ($nx x $ny cells, jacobian $jac); $(tail -n 2 $c/log)"; fi
 done
 
 # ---- rest: cut and merged, and Voronoi ----
@@ -260,3 +268,4 @@ bad bad_theta_zero "sed -i 's/uniform 1;/uniform 0;/' 0/Theta" 'Theta = 0 in cel
 bad bad_no_theta_solver "sed -i 's/\"U.\\*|Theta\"/\"U.*\"/' system/fvSolution" 'Theta'
 bad bad_no_theta_file "rm 0/Theta" 'Theta'
 bad bad_heating "echo 'heatingSchemes { wallVelocity interior; }' >>system/fvSchemes" 'fvSchemes:[0-9]*:.*interior'
+bad bad_jacobian "echo 'heatingSchemes { jacobian greenGauss; }' >>system/fvSchemes" 'fvSchemes:[0-9]*:.*greenGauss'

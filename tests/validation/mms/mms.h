@@ -18,6 +18,7 @@ typedef struct Study {
     const char *kind, *interp, *div;   /* mms.c's words */
     int granular;                      /* -model granular (else Newtonian) */
     int dim, voronoi, layers;
+    int jacobian;                      /* the heating's (GRAN_JAC_FACE, ...) */
     double mu, RsT, tol, tmax, maxCo;
     double max_skewness;               /* mergeCells' maxSkewness */
     double expect[MMS_NQ];             /* expected orders by norm, < 0: none */

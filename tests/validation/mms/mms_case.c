@@ -229,7 +229,8 @@ void mms_case_init(MmsCase *k, const Study *s, int N)
     initial_state(s, k);
     GranularProps pr = {.model = MODEL_NEWTONIAN, .mu = s->mu, .RsT = s->RsT};
     if (s->granular) pr = gran_props(s);
-    GranSchemes sch = {.div = {div_scheme(s->div), div_scheme(s->div), div_scheme(s->div)}, .gravity = GRAN_WELL_BALANCED};
+    GranSchemes sch = {.div = {div_scheme(s->div), div_scheme(s->div), div_scheme(s->div)}, .gravity = GRAN_WELL_BALANCED,
+                       .jacobian = s->jacobian};
     k->sol = dict_parse(FVSOLUTION, strlen(FVSOLUTION), "fvSolution", &e);
     if (!k->sol || gran_init(&k->g, &k->f, &k->ip, &pr, &sch, &k->rho, &k->U, s->granular ? &k->T : NULL, k->sol, &e))
         die("gran_init", &e);

@@ -25,10 +25,12 @@ linearly over the half cell next to each wall).  Errors of the velocity
 along the plates and of T: L1 = sum V |e| / sum V, Linf = max |e|, with
 observed orders beside the thesis's.
 
-usage: shear.py BIN WORKDIR [quick | noSlip partialSlip partialSlipUB gravity]
+usage: shear.py BIN WORKDIR [quick | noSlip partialSlip partialSlipUB gravity] [jacobian=NAME]
   partialSlipUB is partialSlip with heatingSchemes { wallVelocity boundary; }
   (ours: the heating at the walls from U's boundary values u_B, not u_S).
   quick: the test of make test (see quick()).
+  jacobian=NAME: heatingSchemes' jacobian (faceMetric, the default;
+  leastSquares; faceWeight, eq. 4.65's weight).
 """
 import math, os, re, subprocess, sys, time
 
@@ -44,6 +46,7 @@ HREF = {'noSlip': 0.000625, 'partialSlip': 0.000625, 'partialSlipUB': 0.000625, 
 GRAV = 1.0
 COEFFS = ('eta0 0.00102573; epsilon0 216.649; lambda0 0.00034; cMax 0.8; c0 0.3; T0 0; KT 0.666667; deltaC %g;')
 INTERP = 'shepard'                       # ICCM^MC_MS, the thesis's granular tests
+JACOBIAN = 'faceMetric'                  # heatingSchemes' jacobian (argument jacobian=NAME)
 DELTAC = 1e-6                            # the default: c <= cMax - 1e-6 (the cold bulk packs to it)
 SCHEMES = [('upwind', 'Gauss upwind'), ('limitedLinear 1', 'Gauss limitedLinear 1')]
 # Thesis Tables 5.5-5.7: h -> (Cart vel L1, Linf, ICCM vel L1, Linf, Cart T L1, Linf, ICCM T L1, Linf)
@@ -91,9 +94,10 @@ def write_case(d, h, variant, rotated, scheme):
       'application solveGranular; startFrom latestTime; startTime 0; stopAt endTime; endTime %r; deltaT 1e-5; '
       'adjustTimeStep yes; maxCo 0.25; writeControl adjustableRunTime; writeInterval %r; writeFormat ascii; '
       'writePrecision 17; writeVTK no;\n' % (TEND, TEND))
+    heat = ('wallVelocity boundary; ' if variant == 'partialSlipUB' else '') + 'jacobian %s;' % JACOBIAN
     w('system/fvSchemes', hdr('fvSchemes') +
-      'divSchemes { default %s; } interpolationSchemes { default %s; }%s\n' % (
-          scheme, INTERP, ' heatingSchemes { wallVelocity boundary; }' if variant == 'partialSlipUB' else ''))
+      'divSchemes { default %s; } interpolationSchemes { default %s; } heatingSchemes { %s }\n' % (
+          scheme, INTERP, heat))
     w('system/fvSolution', hdr('fvSolution') +
       'solvers { "U.*|Theta" { solver PBiCGStab; preconditioner DILU; tolerance 1e-12; relTol 0; } }\n')
     walls = 'box { type zeroGradient; } ' if rotated else ''
@@ -346,8 +350,12 @@ def quick(binp, work):
 
 
 def main():
+    global JACOBIAN
     binp, work = sys.argv[1], sys.argv[2]
-    args = sys.argv[3:]
+    args = [a for a in sys.argv[3:] if not a.startswith('jacobian=')]
+    for a in sys.argv[3:]:
+        if a.startswith('jacobian='):
+            JACOBIAN = a.split('=', 1)[1]
     if args == ['quick']:
         return 1 if quick(binp, work) else 0
     nfail = 0
