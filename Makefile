@@ -171,6 +171,7 @@ tutorial: deps
 bench: all
 	@KIESEL_BIN=$(abspath $(BIN)) bench/run
 	@KIESEL_BIN=$(abspath $(BIN)) bench/bench_solver
+	@KIESEL_BIN=$(abspath $(BIN)) bench/bench_openfoam
 
 validate: all
 	@KIESEL_BIN=$(abspath $(BIN)) tests/run --validate
