@@ -308,8 +308,7 @@ static void jacobian_sums(Granular *g, int k)
         double v[3], d;
         int o = f->m->owner[i];
         if (g->jacobian == GRAN_JAC_LSQ) {
-            int n = i < f->ninternal ? f->m->neighbour[i] : f->cyc_face[i - f->ninternal];
-            if (i >= f->ninternal && n >= 0) n = f->m->owner[n]; /* the cyclic partner's owner */
+            int n = fvmesh_across(f, i, v); /* the cell across (v: scratch) */
             memcpy(v, m->lsq + 3 * i, sizeof v);
             d = (n >= 0 ? m->uk[n] : m->tb[i - f->ninternal]) - m->uk[o];
         } else {
@@ -322,48 +321,45 @@ static void jacobian_sums(Granular *g, int k)
     }
 }
 
-/* heat[c] = K_T eta_C sum_ij (J_C)_ij^2 with the Jacobian of u^m
-   (eq. 4.65, or its metric or least-squares forms, granular.h). */
-/* heat[c] = K_T / V_C sum_f w eta_f sum_k (du_k/dn)^2 A_f dist_f: the
-   kinetic energy each face's diffusion flux (eq. 4.62) takes out, half to
-   each cell of a two-sided face, all to the owner of a boundary face
-   (faceDissipation, granular.h). */
-static void dissipation_heating(Granular *g)
+/* Adds component k's energy loss to heat: sum_f w eta_f (du_k/dn)^2 A_f
+   dist_f, the kinetic energy each face's diffusion flux (eq. 4.62) takes
+   out, half to each cell of a two-sided face, all to the owner of a
+   boundary face (faceDissipation, granular.h). */
+static void dissipation_sums(Granular *g, int k)
 {
     GranModel *m = &g->gm;
     const FvMesh *f = g->f;
-    memset(m->heat, 0, sizeof(double) * (size_t)f->ncells);
-    for (int k = 0; k < 3; k++) {
-        if (k == f->empty_axis) continue;
-        for (int c = 0; c < f->ncells; c++) m->uk[c] = g->U->v[3 * c + k];
-        for (int b = 0; b < f->nboundary; b++) m->tb[b] = m->ub[3 * b + k];
-        for (int i = 0; i < f->nfaces; i++) {
-            if (f->empty_face[i]) continue;
-            double d = normal_derivative(g, i, k, m->uk, m->tb);
-            double e = m->eta_f[i] * d * d * f->mag_sf[i] * g->op.dist[i];
-            if (fvmesh_two_sided(f, i)) e *= 0.5;
-            m->heat[f->m->owner[i]] += e;
-            if (i < f->ninternal) m->heat[f->m->neighbour[i]] += e;
-        }
+    for (int i = 0; i < f->nfaces; i++) {
+        if (f->empty_face[i]) continue;
+        double d = normal_derivative(g, i, k, m->uk, m->tb);
+        double e = m->eta_f[i] * d * d * f->mag_sf[i] * g->op.dist[i];
+        if (fvmesh_two_sided(f, i)) e *= 0.5;
+        m->heat[f->m->owner[i]] += e;
+        if (i < f->ninternal) m->heat[f->m->neighbour[i]] += e;
     }
-    for (int c = 0; c < f->ncells; c++) m->heat[c] *= g->pr.k.KT / f->m->cell_vol[c];
 }
 
+/* heat[c] = K_T eta_C sum_ij (J_C)_ij^2 with the Jacobian of u^m (eq.
+   4.65, or its metric or least-squares forms), or K_T / V_C times the
+   faces' energy loss (faceDissipation); granular.h. */
 static void heating(Granular *g)
 {
     GranModel *m = &g->gm;
     const FvMesh *f = g->f;
+    int diss = g->jacobian == GRAN_JAC_DISS;
     wall_values(g);
-    if (g->jacobian == GRAN_JAC_DISS) {
-        dissipation_heating(g);
-        return;
-    }
-    memset(m->jac, 0, sizeof(double) * 9 * (size_t)f->ncells);
+    if (diss) memset(m->heat, 0, sizeof(double) * (size_t)f->ncells);
+    else memset(m->jac, 0, sizeof(double) * 9 * (size_t)f->ncells);
     for (int k = 0; k < 3; k++) {
         if (k == f->empty_axis) continue;
         for (int c = 0; c < f->ncells; c++) m->uk[c] = g->U->v[3 * c + k];
         for (int b = 0; b < f->nboundary; b++) m->tb[b] = m->ub[3 * b + k];
-        jacobian_sums(g, k);
+        if (diss) dissipation_sums(g, k);
+        else jacobian_sums(g, k);
+    }
+    if (diss) {
+        for (int c = 0; c < f->ncells; c++) m->heat[c] *= g->pr.k.KT / f->m->cell_vol[c];
+        return;
     }
     for (int c = 0; c < f->ncells; c++) {
         const double *D = m->jac + 9 * c, *W = m->jmet + 9 * c;
