@@ -776,14 +776,17 @@ static int chain(const Seg *s, int ns, Loop *loops, int maxl)
     return nl;
 }
 
-/* The leaf of a boundary face: its points' leaves when they agree, else
-   the leaf nearest to its centre. */
+/* The leaf of a boundary face: its points' leaves when every point has
+   one and they agree, else the leaf nearest to its centre.  A point
+   without a leaf is a grid vertex on the surface; a face on a grid plane
+   may have its only tagged points on the edge where another surface meets
+   it (a pipe's wall between its mouth, off the grid planes, and the next
+   grid plane), and those points' leaf is not the face's. */
 static int face_leaf(const Ctx *c, const int *leaf, int n, const double ctr[3])
 {
     int lf = -1;
     for (int i = 0; i < n; i++) {
-        if (leaf[i] < 0) continue;
-        if (lf >= 0 && leaf[i] != lf) return geometry_nearest_leaf(c->g, ctr);
+        if (leaf[i] < 0 || (lf >= 0 && leaf[i] != lf)) return geometry_nearest_leaf(c->g, ctr);
         lf = leaf[i];
     }
     return lf >= 0 ? lf : geometry_nearest_leaf(c->g, ctr);
@@ -1031,7 +1034,10 @@ static void emit_loop(Ctx *c, const Loop *L, int cell, const double r[3], double
     int mp = meshbuild_point(&c->b, m);
     for (int i = 0; i < L->n; i++) {
         int j = (i + 1) % L->n;
-        int tri[3] = {mp, L->pt[i], L->pt[j]}, lf[3] = {-1, L->leaf[i], L->leaf[j]};
+        /* the centre point takes the rim's leaf where the rim agrees:
+           face_leaf reads a point without a leaf as a grid vertex */
+        int same = L->leaf[i] == L->leaf[j] ? L->leaf[i] : -1;
+        int tri[3] = {mp, L->pt[i], L->pt[j]}, lf[3] = {same, L->leaf[i], L->leaf[j]};
         add_wall(c, tri, lf, 3, cell);
     }
 }

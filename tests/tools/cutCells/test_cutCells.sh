@@ -17,6 +17,8 @@
 #     scaled by 0.3 and moved to the centre) and cuts to the analytic
 #     volume within 2e-3;
 #   - 2-D: a disc on a 64^2 grid one cell thick, area error below 1e-3;
+#   - a duct's wall on a grid plane next to its mouth off the grid planes:
+#     each face goes to its own surface's patch (areas exact to 1e-12);
 #   - pipes: blockGrid -o - | cutCells -i - -o - writes the same stream as
 #     cutCells on the written grid;
 #   - the VTK file of a cut grid read by VTK's own reader has the cell
@@ -152,6 +154,51 @@ if "$BIN/cutCells" -case disc >disc/log.cutCells 2>&1; then
         fail cutCells_disc_area "fluid $v, exact $ex, relative error $r > 1e-3"
 else
     fail cutCells_disc_area "cutCells failed: $(tail -n 3 disc/log.cutCells)"
+fi
+
+# ---- the patch of a face on a grid plane ---------------------------------------------
+# A square duct whose walls lie on grid planes (h = 1/8: y, z = 0.25, 0.75)
+# and whose mouth, a plane of another surface, does not (x = 0.3).  The
+# wall faces between the mouth and the next grid plane x = 0.375 have
+# their only cut points on the mouth's edge; they are the duct's, not the
+# mouth's: patch areas inlet 0.25 and duct 4 x 0.5 x 0.7 = 1.4 (before
+# the fix, inlet had 0.25 + 4 x 0.5 x 0.075 = 0.4).
+mkcase duct 8 8 'duct { type wall; flow inside; shape box; min (-1 0.25 0.25); max (2 0.75 0.75); }
+inlet { type patch; flow outside; shape halfSpace; point (0.3 0 0); normal (1 0 0); }'
+"$BIN/blockGrid" -case duct >duct/log.blockGrid 2>&1
+if "$BIN/cutCells" -case duct >duct/log.cutCells 2>&1; then
+    areas=$(/usr/bin/python3 - duct/constant/polyMesh <<'EOF'
+import re, sys
+def body(f):
+    t = open(sys.argv[1] + '/' + f).read()
+    t = re.sub(r'/\*.*?\*/', '', t, flags=re.S)
+    return t[t.index('}', t.index('FoamFile')) + 1:]
+pb = body('points')
+pts = [[float(v) for v in m.split()] for m in re.findall(r'\(([^()]*)\)', pb[pb.index('(') + 1:])]
+faces = [[int(v) for v in m.split()] for m in re.findall(r'\d+\(([^()]*)\)', body('faces'))]
+area = {}
+for name, n, start in re.findall(r'(\w+)\s*\{[^}]*?nFaces\s+(\d+);\s*startFace\s+(\d+);', body('boundary')):
+    a = 0.0
+    for f in faces[int(start):int(start) + int(n)]:
+        S, x = [0.0, 0.0, 0.0], [pts[i] for i in f]
+        for i in range(len(x)):
+            p, q = x[i], x[(i + 1) % len(x)]
+            S[0] += 0.5 * (p[1] * q[2] - p[2] * q[1])
+            S[1] += 0.5 * (p[2] * q[0] - p[0] * q[2])
+            S[2] += 0.5 * (p[0] * q[1] - p[1] * q[0])
+        a += sum(v * v for v in S) ** 0.5
+    area[name] = a
+print('%.12g %.12g' % (area.get('inlet', -1), area.get('duct', -1)))
+EOF
+)
+    read -r ai aw <<<"$areas"
+    if le "$(absdiff "$ai" 0.25)" 1e-12 && le "$(absdiff "$aw" 1.4)" 1e-12; then
+        pass cutCells_grid_plane_face_patch "inlet area $ai (exact 0.25), duct $aw (exact 1.4)"
+    else
+        fail cutCells_grid_plane_face_patch "inlet area $ai (exact 0.25), duct $aw (exact 1.4)"
+    fi
+else
+    fail cutCells_grid_plane_face_patch "cutCells failed: $(tail -n 3 duct/log.cutCells)"
 fi
 
 # ---- pipes ---------------------------------------------------------------------------------
