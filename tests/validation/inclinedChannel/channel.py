@@ -107,11 +107,13 @@ def labels(path):
     t = body(path)
     return [int(x) for x in t[t.index('(') + 1:t.rindex(')')].split()]
 
-def volumes(d):
+def cells(d):
+    """Each cell's volume V and the sum A of |S_f| over its faces but the
+    empty ones (2-D front and back: |S_z| above half of |S|)."""
     pm = os.path.join(d, 'constant/polyMesh')
     pts, faces = tuples(pm + '/points'), tuples(pm + '/faces')
     own, nei = labels(pm + '/owner'), labels(pm + '/neighbour')
-    V = [0.0] * (max(own) + 1)
+    V, A = [0.0] * (max(own) + 1), [0.0] * (max(own) + 1)
     for f, fa in enumerate(faces):
         x = [pts[int(i)] for i in fa]
         c = [sum(p[k] for p in x) / len(x) for k in range(3)]
@@ -122,9 +124,17 @@ def volumes(d):
             S[1] += 0.5 * (a[2] * b[0] - a[0] * b[2])
             S[2] += 0.5 * (a[0] * b[1] - a[1] * b[0])
         dv = sum(c[k] * S[k] for k in range(3)) / 3
+        mag = math.sqrt(sum(v * v for v in S))
+        side = 0.0 if abs(S[2]) > 0.5 * mag else mag
         V[own[f]] += dv
-        if f < len(nei): V[nei[f]] -= dv
-    return V
+        A[own[f]] += side
+        if f < len(nei):
+            V[nei[f]] -= dv
+            A[nei[f]] += side
+    return V, A
+
+def volumes(d):
+    return cells(d)[0]
 
 def field(path, n):
     t = body(path)

@@ -23,27 +23,7 @@ def courant_length(d):
     (doc/tools/solveGranular.md) scales the step with; with the sound
     speed dominating |u_f . S_f| the step ratio of two grids is the ratio
     of their lengths."""
-    pm = os.path.join(d, 'constant/polyMesh')
-    pts, faces = ch.tuples(pm + '/points'), ch.tuples(pm + '/faces')
-    own, nei = ch.labels(pm + '/owner'), ch.labels(pm + '/neighbour')
-    V, A = [0.0] * (max(own) + 1), [0.0] * (max(own) + 1)
-    for f, fa in enumerate(faces):
-        x = [pts[int(i)] for i in fa]
-        c = [sum(p[k] for p in x) / len(x) for k in range(3)]
-        S = [0.0] * 3
-        for i in range(len(x)):
-            a, b = x[i], x[(i + 1) % len(x)]
-            S[0] += 0.5 * (a[1] * b[2] - a[2] * b[1])
-            S[1] += 0.5 * (a[2] * b[0] - a[0] * b[2])
-            S[2] += 0.5 * (a[0] * b[1] - a[1] * b[0])
-        dv = sum(c[k] * S[k] for k in range(3)) / 3
-        mag = math.sqrt(sum(v * v for v in S))
-        empty = abs(S[2]) > 0.5 * mag
-        V[own[f]] += dv
-        if not empty: A[own[f]] += mag
-        if f < len(nei):
-            V[nei[f]] -= dv
-            if not empty: A[nei[f]] += mag
+    V, A = ch.cells(d)
     return min(v / a for v, a in zip(V, A))
 
 def run(binp, d, h, inv, scheme):
