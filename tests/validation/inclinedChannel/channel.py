@@ -159,16 +159,17 @@ def run(binp, d, h, parallel, scheme='Gauss upwind'):
     if not parallel:
         m = re.search(r'unresolved cells:\s+(\d+)', open(os.path.join(d, 'log.mergeCells')).read())
         unresolved = int(m.group(1)) if m else 0
-    V = volumes(d)
+    return dict(errors(d, volumes(d)), secs=secs, unresolved=unresolved)
+
+def errors(d, V):
+    """The state at t = 2 of the run in d on cells of volumes V: the
+    density errors against rho = 1 (L2, L2N, L1, Linf) and u_max."""
     rho, U = field(os.path.join(d, '2/rho'), len(V)), field(os.path.join(d, '2/U'), len(V))
     vt = sum(V)
     e = [r[0] - 1 for r in rho]
-    l2 = math.sqrt(sum(v * x * x for v, x in zip(V, e)) / vt)
-    l1 = sum(v * abs(x) for v, x in zip(V, e)) / vt
-    li = max(abs(x) for x in e)
-    l2n = math.sqrt(sum(x * x for x in e)) / len(e)
-    um = max(math.sqrt(sum(c * c for c in u)) for u in U)
-    return dict(n=len(V), l2=l2, l2n=l2n, l1=l1, li=li, umax=um, secs=secs, unresolved=unresolved)
+    return dict(n=len(V), l2=math.sqrt(sum(v * x * x for v, x in zip(V, e)) / vt),
+                l2n=math.sqrt(sum(x * x for x in e)) / len(e), l1=sum(v * abs(x) for v, x in zip(V, e)) / vt,
+                li=max(abs(x) for x in e), umax=max(math.sqrt(sum(c * c for c in u)) for u in U))
 
 def order(a, b, ha, hb):
     return math.log(a / b) / math.log(ha / hb)

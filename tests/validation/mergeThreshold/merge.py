@@ -6,7 +6,7 @@ Gauss limitedLinear 1 (channel.SCHEMES; printed only).
 
 usage: merge.py BIN WORKDIR INCLINEDCHANNELDIR
 """
-import math, os, re, subprocess, sys, time
+import os, re, subprocess, sys, time
 
 sys.path.insert(0, sys.argv[3])
 import channel as ch
@@ -17,13 +17,11 @@ RUNS = [(0.1, 2), (0.1, 16), (0.05, 2)]
 THESIS = {(0.1, 2): (2.680e-4, 1.189e-2, 1.131, 1133), (0.05, 2): (3.309e-5, 4.966e-3, 1.173, 9493),
           (0.1, 16): (1.123e-4, 4.793e-3, 1.125, 9541)}
 
-def courant_length(d):
-    """min over cells of V / sum |S_f| over the cell's faces but the empty
-    ones (2-D front and back): the length solveGranular's Courant rule
-    (doc/tools/solveGranular.md) scales the step with; with the sound
-    speed dominating |u_f . S_f| the step ratio of two grids is the ratio
-    of their lengths."""
-    V, A = ch.cells(d)
+def courant_length(V, A):
+    """min over cells of V / sum |S_f| (A: ch.cells): the length
+    solveGranular's Courant rule (doc/tools/solveGranular.md) scales the
+    step with; with the sound speed dominating |u_f . S_f| the step ratio
+    of two grids is the ratio of their lengths."""
     return min(v / a for v, a in zip(V, A))
 
 def run(binp, d, h, inv, scheme):
@@ -41,14 +39,9 @@ def run(binp, d, h, inv, scheme):
     dts = [float(x) for x in re.findall(r'^deltaT = (\S+)', log, re.M)]
     dm = max(abs(float(x)) for x in re.findall(r'change since start = (\S+)', log))
     m = re.search(r'unresolved cells:\s+(\d+)', open(os.path.join(d, 'log.mergeCells')).read())
-    V = ch.volumes(d)
-    rho, U = ch.field(os.path.join(d, '2/rho'), len(V)), ch.field(os.path.join(d, '2/U'), len(V))
-    vt = sum(V)
-    e = [r[0] - 1 for r in rho]
-    return dict(n=len(V), l2=math.sqrt(sum(v * x * x for v, x in zip(V, e)) / vt), li=max(abs(x) for x in e),
-                l2n=math.sqrt(sum(x * x for x in e)) / len(e), lc=courant_length(d),
-                umax=max(math.sqrt(sum(c * c for c in u)) for u in U), secs=secs, steps=steps,
-                dtend=dts[-1], vmin=min(V) / (h * h * h), dm=dm, unres=int(m.group(1)) if m else 0)
+    V, A = ch.cells(d)
+    return dict(ch.errors(d, V), lc=courant_length(V, A), secs=secs, steps=steps, dtend=dts[-1],
+                vmin=min(V) / (h * h * h), dm=dm, unres=int(m.group(1)) if m else 0)
 
 def table(res, label):
     print('  %s' % label)
