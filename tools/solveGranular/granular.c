@@ -63,8 +63,8 @@ static void alloc_model(Granular *g)
     double **bnd[] = {&m->cb, &m->Tb, &m->etab, &m->lamb, &m->tb};
     for (size_t i = 0; i < sizeof bnd / sizeof bnd[0]; i++) *bnd[i] = mem_calloc(nb, sizeof(double));
     m->ub = mem_calloc(3 * nb, sizeof(double));
-    m->jac = mem_calloc(9 * nc, sizeof(double));
-    m->jmet = mem_calloc(9 * nc, sizeof(double));
+    m->jac = g->force; /* the core's work array, free when the heating runs (newtonian.c) */
+    m->jmet = mem_calloc(6 * nc, sizeof(double));
     if (g->gravity != GRAN_WELL_BALANCED) return;
     double **prof[] = {&m->prof_v, &m->prof_p, &m->prof_theta};
     for (size_t i = 0; i < sizeof prof / sizeof prof[0]; i++) *prof[i] = mem_calloc(nc, sizeof(double));
@@ -93,6 +93,20 @@ static void inverse_sym(const double *a, int skip, double *b)
         }
     double det = a[0] * b[0] + a[1] * b[3] + a[2] * b[6];
     for (int q = 0; q < 9; q++) b[q] = det > 0 ? b[q] / det : 0;
+}
+
+/* A symmetric 3x3 matrix (row-major) as its upper triangle, and back:
+   the metric is symmetric to the bit (M_C's entries are products that
+   commute, and so are inverse_sym's cofactors). */
+static void sym_pack(const double *a, double *p)
+{
+    p[0] = a[0], p[1] = a[1], p[2] = a[2], p[3] = a[4], p[4] = a[5], p[5] = a[8];
+}
+
+static void sym_unpack(const double *p, double *a)
+{
+    a[0] = p[0], a[1] = a[3] = p[1], a[2] = a[6] = p[2];
+    a[4] = p[3], a[5] = a[7] = p[4], a[8] = p[5];
 }
 
 /* The displacement d from the owner's node to the point across boundary
@@ -135,30 +149,35 @@ static void jacobian_metric(const Granular *g, double *jmet, double *lsq)
                 for (int b = 0; b < 3; b++) M[9 * cells[q] + 3 * a + b] += v[a] * v[b] * w;
     }
     for (int c = 0; c < f->ncells; c++) {
-        double *W = jmet + 9 * c;
+        double W[9];
         if (g->jacobian != GRAN_JAC_THESIS) {
             inverse_sym(M + 9 * c, f->empty_axis, W);
-            continue;
+        } else {
+            /* trace(M_C) = sum_f A_f (unit normals) */
+            double sum = M[9 * c] + M[9 * c + 4] + M[9 * c + 8], alpha = f->empty_axis >= 0 ? 2 : 3;
+            memset(W, 0, sizeof W);
+            for (int a = 0; a < 3; a++)
+                if (a != f->empty_axis && sum > 0) W[4 * a] = alpha / sum;
         }
-        /* trace(M_C) = sum_f A_f (unit normals) */
-        double sum = M[9 * c] + M[9 * c + 4] + M[9 * c + 8], alpha = f->empty_axis >= 0 ? 2 : 3;
-        memset(W, 0, 9 * sizeof(double));
-        for (int a = 0; a < 3; a++)
-            if (a != f->empty_axis && sum > 0) W[4 * a] = alpha / sum;
+        sym_pack(W, jmet + 6 * c);
     }
     free(M);
 }
 
+/* The temperature's system lives on the momentum's matrix: the same
+   pattern (fvm_pattern of the same stencils), and a step assembles and
+   solves the components first and Theta after them (gran_step), so one
+   set of values, right-hand side and pattern serves both, and one PETSc
+   solver and preconditioner too when Theta's solver, preconditioner,
+   maxIter and petscOptions are the components' (linsolve_new_shared:
+   the preconditioner is rebuilt whenever the values move, as before).
+   In 3-D this saves about 280 bytes a cell (doc/performance.md). */
 static int init_solver(Granular *g, const Dict *fvsolution, Err *e)
 {
     GranModel *m = &g->gm;
-    FvPattern pat;
-    fvpattern_init(&pat, g->f);
-    fvm_pattern(&pat, g->f, g->ip);
-    fvmatrix_init(&m->M, &pat);
-    if (fvm_init(&m->op, &m->M, g->f, g->ip, &m->bc_T, e) || linsolve_settings(&m->set, fvsolution, T_NAME, e))
+    if (fvm_init(&m->op, &g->M, g->f, g->ip, &m->bc_T, e) || linsolve_settings(&m->set, fvsolution, T_NAME, e))
         return -1;
-    m->L = linsolve_new(&m->set, &m->M, e);
+    m->L = linsolve_new_shared(&m->set, g->L[0], e);
     return m->L ? 0 : -1;
 }
 
@@ -184,10 +203,9 @@ void granmodel_free(GranModel *m)
     if (m->L) linsolve_free(m->L);
     if (m->set.name) linsolve_settings_free(&m->set);
     if (m->op.dist) fvm_free(&m->op);
-    if (m->M.off) fvmatrix_free(&m->M);
     if (m->bc_T.fm) bc_free(&m->bc_T);
     void *arr[] = {m->eta_c, m->lam_c, m->eps_c, m->pc, m->cfl, m->T1, m->heat, m->uk, m->eta_f, m->lam_f,
-                   m->speed_f, m->cb, m->Tb, m->etab, m->lamb, m->tb, m->ub, m->jac, m->jmet, m->lsq,
+                   m->speed_f, m->cb, m->Tb, m->etab, m->lamb, m->tb, m->ub, m->jmet, m->lsq,
                    m->prof_v, m->prof_p, m->prof_theta, m->grav};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
     memset(m, 0, sizeof *m);
@@ -295,10 +313,10 @@ static double normal_derivative(const Granular *g, int i, int k, const double *u
     return (plus - stencil_apply(s, interp_row(i, INTERP_MINUS), f->ncells, uc, ubk)) / g->op.dist[i];
 }
 
-/* Adds component k's differences to the Jacobian's sums m->jac: (du/dn)
-   n A per face (faceMetric, faceWeight: eq. 4.65) or (u_across - u_C) d
-   / |d|^2 (leastSquares).  Either is one number per face and component
-   for both cells (granular.h). */
+/* Component k's differences summed into m->jac (3 a cell: row k of the
+   Jacobian's sums): (du/dn) n A per face (faceMetric, faceWeight: eq.
+   4.65) or (u_across - u_C) d / |d|^2 (leastSquares).  Either is one
+   number per face and component for both cells (granular.h). */
 static void jacobian_sums(Granular *g, int k)
 {
     GranModel *m = &g->gm;
@@ -315,9 +333,9 @@ static void jacobian_sums(Granular *g, int k)
             memcpy(v, f->m->face_area + 3 * i, sizeof v);
             d = normal_derivative(g, i, k, m->uk, m->tb);
         }
-        for (int j = 0; j < 3; j++) m->jac[9 * o + 3 * k + j] += d * v[j];
+        for (int j = 0; j < 3; j++) m->jac[3 * o + j] += d * v[j];
         if (i < f->ninternal)
-            for (int j = 0; j < 3; j++) m->jac[9 * f->m->neighbour[i] + 3 * k + j] += d * v[j];
+            for (int j = 0; j < 3; j++) m->jac[3 * f->m->neighbour[i] + j] += d * v[j];
     }
 }
 
@@ -348,29 +366,29 @@ static void heating(Granular *g)
     const FvMesh *f = g->f;
     int diss = g->jacobian == GRAN_JAC_DISS;
     wall_values(g);
-    if (diss) memset(m->heat, 0, sizeof(double) * (size_t)f->ncells);
-    else memset(m->jac, 0, sizeof(double) * 9 * (size_t)f->ncells);
+    memset(m->heat, 0, sizeof(double) * (size_t)f->ncells);
     for (int k = 0; k < 3; k++) {
-        if (k == f->empty_axis) continue;
+        if (k == f->empty_axis) continue; /* its row of J is zero */
         for (int c = 0; c < f->ncells; c++) m->uk[c] = g->U->v[3 * c + k];
         for (int b = 0; b < f->nboundary; b++) m->tb[b] = m->ub[3 * b + k];
-        if (diss) dissipation_sums(g, k);
-        else jacobian_sums(g, k);
-    }
-    if (diss) {
-        for (int c = 0; c < f->ncells; c++) m->heat[c] *= g->pr.k.KT / f->m->cell_vol[c];
-        return;
-    }
-    for (int c = 0; c < f->ncells; c++) {
-        const double *D = m->jac + 9 * c, *W = m->jmet + 9 * c;
-        double sum = 0;
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++) { /* J = D M_C^-1 */
-                double Jij = D[3 * i] * W[j] + D[3 * i + 1] * W[3 + j] + D[3 * i + 2] * W[6 + j];
-                sum += Jij * Jij;
+        if (diss) {
+            dissipation_sums(g, k);
+            continue;
+        }
+        memset(m->jac, 0, sizeof(double) * 3 * (size_t)f->ncells);
+        jacobian_sums(g, k);
+        for (int c = 0; c < f->ncells; c++) { /* row k of J = D M_C^-1, squared into heat */
+            const double *D = m->jac + 3 * c;
+            double W[9];
+            sym_unpack(m->jmet + 6 * c, W);
+            for (int j = 0; j < 3; j++) {
+                double Jkj = D[0] * W[j] + D[1] * W[3 + j] + D[2] * W[6 + j];
+                m->heat[c] += Jkj * Jkj;
             }
-        m->heat[c] = g->pr.k.KT * m->eta_c[c] * sum;
+        }
     }
+    double w = g->pr.k.KT;
+    for (int c = 0; c < f->ncells; c++) m->heat[c] *= diss ? w / f->m->cell_vol[c] : w * m->eta_c[c];
 }
 
 /* The convection of c T (eq. 4.60: the upwind state, or the scheme of
@@ -395,7 +413,7 @@ static void assemble_T(Granular *g, double dt)
 {
     GranModel *m = &g->gm;
     const FvMesh *f = g->f;
-    FvMatrix *M = &m->M;
+    FvMatrix *M = &g->M; /* the momentum's, its components solved (init_solver) */
     fvmatrix_zero(M);
     fvm_ddt(M, f, m->cfl, dt);
     for (int r = 0; r < M->nrows; r++) M->val[M->diag[r]] += m->eps_c[r] * m->cfl[r] * f->m->cell_vol[r];

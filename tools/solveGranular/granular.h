@@ -91,14 +91,16 @@ typedef struct GranModel {
     double *cfl;           /* ncells: c^{m+1} floored to cMin (the matrices) */
     double *T1;            /* ncells: the new temperature */
     double *heat;          /* ncells: K_T eta_C sum (J_C)_ij^2 (per volume) */
-    double *jac;           /* 9 ncells: the Jacobian's sums (scratch) */
-    double *jmet;          /* 9 ncells: the inverse of M_C = sum_f n_f n_f^T A_f
-                              over the non-empty faces (the Jacobian's metric) */
+    double *jac;           /* 3 ncells: one row of the Jacobian's sums, then
+                              the next (the core's work array force, not
+                              owned: newtonian.c); scratch of the closures */
+    double *jmet;          /* 6 ncells: the inverse of M_C = sum_f n_f n_f^T A_f
+                              over the non-empty faces (the Jacobian's
+                              metric), symmetric: its upper triangle */
     double *lsq;           /* 3 nfaces, heatingSchemes jacobian leastSquares
                               only: d / |d|^2 to the point across each face */
     double *ub;            /* 3 nboundary: U's boundary values with u_S at walls */
-    FvMatrix M;
-    Fvm op;
+    Fvm op;                /* on the core's matrix Granular.M (init_solver) */
     LinSettings set;
     LinSystem *L;
     LinStats st;

@@ -14,7 +14,10 @@
 ** Memory: the step is memory-bound (doc/performance.md, "Roofline"), so
 ** its work arrays are few and each serves several things in turn:
 **   force  the convection of rho (its first ncells), then of rho u, then
-**          the pressure force;
+**          the pressure force; model granular (granular.c): the cells'
+**          signal speeds of the closures before that, and after the
+**          solves one row of the heating's Jacobian sums at a time, then
+**          the convection of c T (its first ncells);
 **   mom    rho u, then V (rho u)^m / dt minus its convection, the part of
 **          the right-hand side that does not depend on the component's
 **          matrix; once component k is assembled and solved its
@@ -247,6 +250,7 @@ int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProp
 
 void gran_free(Granular *g)
 {
+    granmodel_free(&g->gm); /* its solver may share the components' (granular.c) */
     for (int j = 0; j < g->naxes; j++) {
         linsolve_free(g->L[j]);
         linsolve_settings_free(&g->set[j]);
@@ -257,7 +261,6 @@ void gran_free(Granular *g)
     if (g->bc_rho.fm) bc_free(&g->bc_rho);
     tvd_free(&g->tvd);
     if (g->hy.f) hydro_free(&g->hy);
-    granmodel_free(&g->gm);
     void *arr[] = {g->wall, g->phi, g->rho1, g->mom, g->force, g->x, g->xb, g->xbr, g->patch_out};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
     free(g->src_rho);
