@@ -61,15 +61,19 @@ void fvc_pressure_force(const FvMesh *f, const double *pf, double *out)
     }
 }
 
-/* fvc_courant with c_f = cf[f], or c0 where cf is NULL. */
-static double courant(const FvMesh *f, const double *phi, const double *cf, double c0, double dt, double *co)
+/* fvc_courant with c_f = cf[f], or the larger of the cells' cc (the
+   owner's at a boundary face) where cc is given, or c0. */
+static double courant(const FvMesh *f, const double *phi, const double *cf, const double *cc, double c0, double dt,
+                      double *co)
 {
     const Mesh *m = f->m;
     double *sum = co ? co : mem_alloc(sizeof(double) * ((size_t)f->ncells + 1)), worst = 0;
     memset(sum, 0, sizeof(double) * (size_t)f->ncells);
     for (int i = 0; i < f->nfaces; i++) {
         if (f->empty_face[i]) continue;
-        double s = fabs(phi[i]) + (cf ? cf[i] : c0) * f->mag_sf[i];
+        double c = cf ? cf[i] : c0;
+        if (cc) c = i < f->ninternal ? fmax(cc[m->owner[i]], cc[m->neighbour[i]]) : cc[m->owner[i]];
+        double s = fabs(phi[i]) + c * f->mag_sf[i];
         sum[m->owner[i]] += s;
         if (i < f->ninternal) sum[m->neighbour[i]] += s;
     }
@@ -83,12 +87,17 @@ static double courant(const FvMesh *f, const double *phi, const double *cf, doub
 
 double fvc_courant(const FvMesh *f, const double *phi, const double *cf, double dt, double *co)
 {
-    return courant(f, phi, cf, 0, dt, co);
+    return courant(f, phi, cf, NULL, 0, dt, co);
+}
+
+double fvc_courant_cells(const FvMesh *f, const double *phi, const double *cc, double dt, double *co)
+{
+    return courant(f, phi, NULL, cc, 0, dt, co);
 }
 
 double fvc_courant_uniform(const FvMesh *f, const double *phi, double c, double dt, double *co)
 {
-    return courant(f, phi, NULL, c, dt, co);
+    return courant(f, phi, NULL, NULL, c, dt, co);
 }
 
 double fvc_total(const FvMesh *f, const double *x)

@@ -42,6 +42,9 @@ void fvc_pressure_force(const FvMesh *f, const double *pf, double *out);
    OpenFOAM's CourantNo with the acoustic term added.  Returns the
    largest; co (may be NULL) receives each cell's. */
 double fvc_courant(const FvMesh *f, const double *phi, const double *cf, double dt, double *co);
+/* The same with c_f the larger of the signal speeds cc of the face's two
+   cells (the owner's at a boundary face): no array of faces. */
+double fvc_courant_cells(const FvMesh *f, const double *phi, const double *cc, double dt, double *co);
 /* The same with one signal speed c on every face (no array of them). */
 double fvc_courant_uniform(const FvMesh *f, const double *phi, double c, double dt, double *co);
 

@@ -102,6 +102,13 @@ static int face_positions(Fvm *d, const FvMatrix *M, int i)
     return missing;
 }
 
+/* Is face i a boundary face whose gradient d's boundary condition gives? */
+static int is_neumann(const Fvm *d, int i)
+{
+    const FvMesh *f = d->f;
+    return i >= f->ninternal && !f->empty_face[i] && d->bc->fixed_grad[bc_slot(d->bc, i - f->ninternal)];
+}
+
 /* Which faces are two-point, and where the others' positions go. */
 static void face_layout(Fvm *d, const FvMatrix *M)
 {
@@ -113,8 +120,7 @@ static void face_layout(Fvm *d, const FvMatrix *M)
     for (int i = 0; i < f->nfaces; i++) {
         d->pos_off[i] = q;
         d->kind[i] = (char)(two_point(M, f, s, i) ? FVM_TWO_POINT : 0);
-        if (i >= f->ninternal && !f->empty_face[i] && d->bc->fixed_grad[bc_slot(d->bc, i - f->ninternal)])
-            d->kind[i] = FVM_NEUMANN;
+        if (is_neumann(d, i)) d->kind[i] = FVM_NEUMANN;
         if (!f->empty_face[i] && d->kind[i] != FVM_TWO_POINT) q += face_entries(s, i);
     }
     d->pos_off[f->nfaces] = q;
@@ -170,12 +176,31 @@ int fvm_init(Fvm *d, const FvMatrix *M, const FvMesh *f, const Interp *ip, const
     return 0;
 }
 
+/* Boundary faces are never two-point (two_point), so the layout and the
+   distances do not depend on the boundary condition: only the Neumann
+   faces and the right-hand-side faces do. */
+void fvm_init_like(Fvm *d, const Fvm *base, const Bc *bc)
+{
+    const FvMesh *f = base->f;
+    *d = *base;
+    d->bc = bc;
+    d->shared = 1;
+    d->kind = mem_alloc((size_t)f->nfaces + 1);
+    for (int i = 0; i < f->nfaces; i++)
+        d->kind[i] = (char)(is_neumann(d, i) ? FVM_NEUMANN : i < f->ninternal ? base->kind[i] : 0);
+    d->rhs_face = NULL;
+    d->nrhs_face = 0;
+    list_rhs_faces(d);
+}
+
 void fvm_free(Fvm *d)
 {
-    free(d->dist);
-    free(d->pos_own);
-    free(d->pos_nbr);
-    free(d->pos_off);
+    if (!d->shared) {
+        free(d->dist);
+        free(d->pos_own);
+        free(d->pos_nbr);
+        free(d->pos_off);
+    }
     free(d->kind);
     free(d->rhs_face);
     memset(d, 0, sizeof *d);

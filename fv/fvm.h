@@ -75,6 +75,7 @@ typedef struct Fvm {
     int *pos_nbr;   /* ... in the row of its face's neighbour */
     int *rhs_face;  /* the faces with right-hand-side terms, ascending */
     int nrhs_face;
+    int shared;     /* dist and the positions are another Fvm's (fvm_init_like) */
 } Fvm;
 
 /* Adds to p the couplings of the diffusion operator on f with the face
@@ -84,6 +85,11 @@ void fvm_pattern(FvPattern *p, const FvMesh *f, const Interp *ip);
 /* Finds the positions on M (built from a pattern fvm_pattern filled);
    fails when an entry is missing from the pattern. */
 int fvm_init(Fvm *d, const FvMatrix *M, const FvMesh *f, const Interp *ip, const Bc *bc, Err *e);
+/* The operator of another field with boundary conditions bc on base's
+   matrix, mesh and stencils: it shares base's distances and positions
+   (which the boundary conditions do not change) and keeps its own Neumann
+   faces and right-hand-side faces.  base must outlive it. */
+void fvm_init_like(Fvm *d, const Fvm *base, const Bc *bc);
 void fvm_free(Fvm *d);
 
 /* Adds -sum_f Gamma |S_f| du/dn of component k (of bc's field, whose

@@ -56,9 +56,9 @@ static void alloc_model(Granular *g)
 {
     GranModel *m = &g->gm;
     size_t nc = (size_t)g->f->ncells + 1, nf = (size_t)g->f->nfaces + 1, nb = (size_t)g->f->nboundary + 1;
-    double **cell[] = {&m->eta_c, &m->lam_c, &m->eps_c, &m->pc, &m->cfl, &m->T1, &m->heat, &m->uk};
+    double **cell[] = {&m->eta_c, &m->lam_c, &m->eps_c, &m->pc, &m->cfl, &m->T1, &m->heat, &m->uk, &m->speed_c};
     for (size_t i = 0; i < sizeof cell / sizeof cell[0]; i++) *cell[i] = mem_calloc(nc, sizeof(double));
-    double **face[] = {&m->eta_f, &m->lam_f, &m->speed_f};
+    double **face[] = {&m->eta_f, &m->lam_f};
     for (size_t i = 0; i < sizeof face / sizeof face[0]; i++) *face[i] = mem_calloc(nf, sizeof(double));
     double **bnd[] = {&m->cb, &m->Tb, &m->etab, &m->lamb, &m->tb};
     for (size_t i = 0; i < sizeof bnd / sizeof bnd[0]; i++) *bnd[i] = mem_calloc(nb, sizeof(double));
@@ -131,7 +131,11 @@ static int lsq_point(const FvMesh *f, int i, double d[3])
 static void jacobian_metric(const Granular *g, double *jmet, double *lsq)
 {
     const FvMesh *f = g->f;
-    double *M = mem_calloc(9 * (size_t)f->ncells + 1, sizeof(double));
+    /* M_C's upper triangle accumulates in jmet itself, and each cell's
+       inverse replaces it (no array of 9 a cell while the set-up's
+       arrays are still alive: that was the run's peak) */
+    static const int upper[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+    memset(jmet, 0, sizeof(double) * 6 * (size_t)f->ncells);
     for (int i = 0; i < f->nfaces; i++) {
         if (f->empty_face[i]) continue;
         double v[3], w;
@@ -145,38 +149,29 @@ static void jacobian_metric(const Granular *g, double *jmet, double *lsq)
         }
         int cells[2] = {f->m->owner[i], i < f->ninternal ? f->m->neighbour[i] : -1};
         for (int q = 0; q < 2 && cells[q] >= 0; q++)
-            for (int a = 0; a < 3; a++)
-                for (int b = 0; b < 3; b++) M[9 * cells[q] + 3 * a + b] += v[a] * v[b] * w;
+            for (int u = 0; u < 6; u++) jmet[6 * cells[q] + u] += v[upper[u][0]] * v[upper[u][1]] * w;
     }
     for (int c = 0; c < f->ncells; c++) {
-        double W[9];
+        double M[9], W[9];
+        sym_unpack(jmet + 6 * c, M);
         if (g->jacobian != GRAN_JAC_THESIS) {
-            inverse_sym(M + 9 * c, f->empty_axis, W);
+            inverse_sym(M, f->empty_axis, W);
         } else {
             /* trace(M_C) = sum_f A_f (unit normals) */
-            double sum = M[9 * c] + M[9 * c + 4] + M[9 * c + 8], alpha = f->empty_axis >= 0 ? 2 : 3;
+            double sum = M[0] + M[4] + M[8], alpha = f->empty_axis >= 0 ? 2 : 3;
             memset(W, 0, sizeof W);
             for (int a = 0; a < 3; a++)
                 if (a != f->empty_axis && sum > 0) W[4 * a] = alpha / sum;
         }
         sym_pack(W, jmet + 6 * c);
     }
-    free(M);
 }
 
-/* The temperature's system lives on the momentum's matrix: the same
-   pattern (fvm_pattern of the same stencils), and a step assembles and
-   solves the components first and Theta after them (gran_step), so one
-   set of values, right-hand side and pattern serves both, and one PETSc
-   solver and preconditioner too when Theta's solver, preconditioner,
-   maxIter and petscOptions are the components' (linsolve_new_shared:
-   the preconditioner is rebuilt whenever the values move, as before).
-   In 3-D this saves about 280 bytes a cell (doc/performance.md). */
 static int init_solver(Granular *g, const Dict *fvsolution, Err *e)
 {
     GranModel *m = &g->gm;
-    if (fvm_init(&m->op, &g->M, g->f, g->ip, &m->bc_T, e) || linsolve_settings(&m->set, fvsolution, T_NAME, e))
-        return -1;
+    fvm_init_like(&m->op, &g->op, &m->bc_T);
+    if (linsolve_settings(&m->set, fvsolution, T_NAME, e)) return -1;
     m->L = linsolve_new_shared(&m->set, g->L[0], e);
     return m->L ? 0 : -1;
 }
@@ -205,7 +200,7 @@ void granmodel_free(GranModel *m)
     if (m->op.dist) fvm_free(&m->op);
     if (m->bc_T.fm) bc_free(&m->bc_T);
     void *arr[] = {m->eta_c, m->lam_c, m->eps_c, m->pc, m->cfl, m->T1, m->heat, m->uk, m->eta_f, m->lam_f,
-                   m->speed_f, m->cb, m->Tb, m->etab, m->lamb, m->tb, m->ub, m->jmet, m->lsq,
+                   m->speed_c, m->cb, m->Tb, m->etab, m->lamb, m->tb, m->ub, m->jmet, m->lsq,
                    m->prof_v, m->prof_p, m->prof_theta, m->grav};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) free(arr[i]);
     memset(m, 0, sizeof *m);
@@ -230,12 +225,11 @@ void granmodel_closures(Granular *g)
     const FvMesh *f = g->f;
     const GranCoeffs *k = &g->pr.k;
     const double *c = g->rho->v, *T = m->T->v;
-    double *speed = m->jac; /* scratch until the heating */
     for (int i = 0; i < f->ncells; i++) {
         GranClosure cl;
         closure_eval(k, c[i], T[i], &cl);
         m->eta_c[i] = cl.eta, m->lam_c[i] = k->KT * cl.lambda, m->eps_c[i] = cl.eps, m->pc[i] = cl.p;
-        speed[i] = sqrt(fmax(cl.dpdc, 0));
+        m->speed_c[i] = sqrt(fmax(cl.dpdc, 0));
     }
     bc_values(&g->bc_rho, c, m->cb);
     bc_update(&m->bc_T, T);
@@ -248,10 +242,6 @@ void granmodel_closures(Granular *g)
     }
     face_values(g, m->eta_c, m->etab, m->eta_f);
     face_values(g, m->lam_c, m->lamb, m->lam_f);
-    for (int i = 0; i < f->nfaces; i++) {
-        double s = speed[f->m->owner[i]];
-        m->speed_f[i] = i < f->ninternal ? fmax(s, speed[f->m->neighbour[i]]) : s;
-    }
     m->fresh = 1;
     g->t_explicit += clock_s() - t0; /* the profile's "explicit terms" */
 }

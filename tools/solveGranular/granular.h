@@ -76,7 +76,8 @@ typedef struct GranModel {
     Bc bc_T;
     double *eta_c, *lam_c, *eps_c;   /* ncells: eta, K_T lambda, eps at c^m, T^m */
     double *eta_f, *lam_f; /* nfaces: eta_f and K_T lambda_f (eq. 4.61's face rule) */
-    double *speed_f;       /* nfaces: the signal speed sqrt(dp/dc) (Courant) */
+    double *speed_c;       /* ncells: the signal speed sqrt(dp/dc) (the Courant
+                              number takes a face's larger one) */
     double *cb, *Tb;       /* nboundary: boundary values of c and T */
     double *etab, *lamb;   /* nboundary: eta and K_T lambda there */
     double *tb;            /* nboundary: scratch (a component, a state) */
@@ -93,7 +94,7 @@ typedef struct GranModel {
     double *heat;          /* ncells: K_T eta_C sum (J_C)_ij^2 (per volume) */
     double *jac;           /* 3 ncells: one row of the Jacobian's sums, then
                               the next (the core's work array force, not
-                              owned: newtonian.c); scratch of the closures */
+                              owned: newtonian.c) */
     double *jmet;          /* 6 ncells: the inverse of M_C = sum_f n_f n_f^T A_f
                               over the non-empty faces (the Jacobian's
                               metric), symmetric: its upper triangle */

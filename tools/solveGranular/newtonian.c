@@ -14,8 +14,7 @@
 ** Memory: the step is memory-bound (doc/performance.md, "Roofline"), so
 ** its work arrays are few and each serves several things in turn:
 **   force  the convection of rho (its first ncells), then of rho u, then
-**          the pressure force; model granular (granular.c): the cells'
-**          signal speeds of the closures before that, and after the
+**          the pressure force; model granular (granular.c): after the
 **          solves one row of the heating's Jacobian sums at a time, then
 **          the convection of c T (its first ncells);
 **   mom    rho u, then V (rho u)^m / dt minus its convection, the part of
@@ -352,7 +351,7 @@ double gran_courant(Granular *g, double dt, double *mean)
     double co, sum = 0;
     if (g->model == MODEL_GRANULAR) {
         granmodel_closures(g);
-        co = fvc_courant(f, g->phi, g->gm.speed_f, dt, g->x);
+        co = fvc_courant_cells(f, g->phi, g->gm.speed_c, dt, g->x);
     } else {
         co = fvc_courant_uniform(f, g->phi, sqrt(g->pr.RsT), dt, g->x);
     }
