@@ -71,8 +71,9 @@ static double courant(const FvMesh *f, const double *phi, const double *cf, cons
     memset(sum, 0, sizeof(double) * (size_t)f->ncells);
     for (int i = 0; i < f->nfaces; i++) {
         if (f->empty_face[i]) continue;
-        double c = cf ? cf[i] : c0;
-        if (cc) c = i < f->ninternal ? fmax(cc[m->owner[i]], cc[m->neighbour[i]]) : cc[m->owner[i]];
+        double c = !cc                 ? (cf ? cf[i] : c0)
+                   : i < f->ninternal ? fmax(cc[m->owner[i]], cc[m->neighbour[i]])
+                                      : cc[m->owner[i]];
         double s = fabs(phi[i]) + c * f->mag_sf[i];
         sum[m->owner[i]] += s;
         if (i < f->ninternal) sum[m->neighbour[i]] += s;

@@ -106,6 +106,15 @@ TEST(upwind_and_courant)
     mesh_free(&m);
 }
 
+/* A swirling flux through every face of m, for the Courant tests. */
+static void swirl_flux(const Mesh *m, double *phi)
+{
+    for (int i = 0; i < m->nfaces; i++) {
+        const double *x = m->face_centre + 3 * i, *S = m->face_area + 3 * i;
+        phi[i] = sin(3 * x[1]) * S[0] - x[0] * S[1] + 0.1 * S[2];
+    }
+}
+
 /* fvc_courant_uniform(c) against fvc_courant with c on every face, on a
    cut grid with a swirling flux: the same numbers bit for bit. */
 TEST(courant_uniform)
@@ -118,11 +127,8 @@ TEST(courant_uniform)
     double *phi = calloc((size_t)f.nfaces + 1, sizeof *phi), *cf = calloc((size_t)f.nfaces + 1, sizeof *cf);
     double *a = calloc((size_t)f.ncells + 1, sizeof *a), *b = calloc((size_t)f.ncells + 1, sizeof *b);
     const double c = sqrt(6.0);
-    for (int i = 0; i < f.nfaces; i++) {
-        const double *x = m.face_centre + 3 * i, *S = m.face_area + 3 * i;
-        phi[i] = sin(3 * x[1]) * S[0] - x[0] * S[1] + 0.1 * S[2];
-        cf[i] = c;
-    }
+    swirl_flux(&m, phi);
+    for (int i = 0; i < f.nfaces; i++) cf[i] = c;
     double wa = fvc_courant(&f, phi, cf, 1e-3, a), wb = fvc_courant_uniform(&f, phi, c, 1e-3, b);
     EXPECT(wa == wb && memcmp(a, b, sizeof(double) * (size_t)f.ncells) == 0, "largest %.17g and %.17g", wa, wb);
     EXPECT(wa > 0, "no Courant number");
@@ -147,10 +153,9 @@ TEST(courant_cells)
     double *cc = calloc((size_t)f.ncells + 1, sizeof *cc);
     double *a = calloc((size_t)f.ncells + 1, sizeof *a), *b = calloc((size_t)f.ncells + 1, sizeof *b);
     for (int c = 0; c < f.ncells; c++) cc[c] = 1 + 0.5 * sin(7.0 * c);
+    swirl_flux(&m, phi);
     for (int i = 0; i < f.nfaces; i++) {
-        const double *x = m.face_centre + 3 * i, *S = m.face_area + 3 * i;
         double so = cc[m.owner[i]];
-        phi[i] = sin(3 * x[1]) * S[0] - x[0] * S[1] + 0.1 * S[2];
         cf[i] = i < f.ninternal && cc[m.neighbour[i]] > so ? cc[m.neighbour[i]] : so;
     }
     double wa = fvc_courant(&f, phi, cf, 1e-3, a), wb = fvc_courant_cells(&f, phi, cc, 1e-3, b);
