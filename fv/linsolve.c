@@ -14,9 +14,14 @@
 ** from the same values is the same to the bit, so nothing changes but the
 ** time).
 **
+** DILU.  OpenFOAM's DILU and DIC are ours (dilu.h), given to PETSc as a
+** PCSHELL whose set-up PETSc calls whenever the matrix's state moved,
+** like its own preconditioners': one double a cell, where PETSc's ilu
+** and icc copy the matrix.
+**
 ** Sharing.  The PETSc objects (matrix wrapper, KSP with its
-** preconditioner and work vectors: about 190 bytes a cell in 3-D for
-** BiCGStab with ILU(0), whose factor alone is a copy of the matrix) live
+** preconditioner and work vectors: about 110 bytes a cell in 3-D for
+** BiCGStab with DILU, 190 with PETSc's ILU(0)) live
 ** in a LinCore that several systems on one matrix may share
 ** (linsolve_new_shared): Ux, Uy and Uz with the same solver,
 ** preconditioner, maxIter and petscOptions need one, not three.  Each
@@ -55,6 +60,7 @@
 
 #include <petscksp.h>
 
+#include "dilu.h"
 #include "mem.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -101,6 +107,9 @@ const DictKey linsolve_keys[] = {
     {NULL, NULL, NULL},
 };
 
+/* OpenFOAM's DILU and DIC: ours (dilu.h), a PETSc PCSHELL. */
+#define DILU_PC "dilu"
+
 typedef struct NameMap {
     const char *foam, *petsc;
 } NameMap;
@@ -110,11 +119,12 @@ static const NameMap solver_names[] = {
     {"smoothSolver", "richardson"}, {"GAMG", "richardson"}, {NULL, NULL},
 };
 static const NameMap precon_names[] = {
-    {"DIC", "icc"}, {"FDIC", "icc"}, {"DILU", "ilu"}, {"GAMG", "gamg"}, {"diagonal", "jacobi"}, {"none", "none"}, {NULL, NULL},
+    {"DIC", DILU_PC}, {"FDIC", DILU_PC}, {"DILU", DILU_PC}, {"GAMG", "gamg"}, {"diagonal", "jacobi"}, {"none", "none"},
+    {NULL, NULL},
 };
 static const NameMap smoother_names[] = {
     {"GaussSeidel", "sor"}, {"symGaussSeidel", "sor"}, {"DICGaussSeidel", "sor"}, {"nonBlockingGaussSeidel", "sor"},
-    {"DIC", "icc"},         {"DILU", "ilu"},           {NULL, NULL},
+    {"DIC", DILU_PC},       {"DILU", DILU_PC},         {NULL, NULL},
 };
 
 static const char *map_name(const NameMap *t, const char *w)
@@ -218,7 +228,7 @@ static PetscErrorCode try_types(const char *ksp, const char *pc, int *bad_ksp)
     if (!ierr) {
         *bad_ksp = 0;
         ierr = KSPGetPC(k, &p);
-        if (!ierr) ierr = PCSetType(p, pc);
+        if (!ierr) ierr = PCSetType(p, strcmp(pc, DILU_PC) ? pc : PCSHELL);
     }
     KSPDestroy(&k);
     return ierr;
@@ -337,6 +347,7 @@ typedef struct LinCore {
     KSP ksp;
     Vec b, x;
     Conv conv;
+    Dilu dilu;             /* the DILU preconditioner's diagonal */
     int built;             /* a solve assembled A ... */
     unsigned long state;   /* ... from M's values at this M->state */
     char prefix[80];
@@ -394,6 +405,44 @@ static PetscErrorCode set_options(LinCore *C, const LinSettings *s)
     return 0;
 }
 
+/* ---- the DILU preconditioner as a PETSc PCSHELL ---- */
+
+static PetscErrorCode dilu_setup(PC pc)
+{
+    LinCore *C;
+    TRY(PCShellGetContext(pc, &C));
+    int bad = dilu_build(&C->dilu, C->M);
+    if (bad) SETERRQ(PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "zero or non-finite pivot in DILU at row %d", bad - 1);
+    return 0;
+}
+
+static PetscErrorCode dilu_run(PC pc, Vec x, Vec y, int transpose)
+{
+    LinCore *C;
+    const PetscScalar *r;
+    PetscScalar *w;
+    TRY(PCShellGetContext(pc, &C));
+    TRY(VecGetArrayRead(x, &r));
+    TRY(VecGetArray(y, &w));
+    if (transpose) dilu_apply_transpose(&C->dilu, C->M, r, w);
+    else dilu_apply(&C->dilu, C->M, r, w);
+    TRY(VecRestoreArray(y, &w));
+    return VecRestoreArrayRead(x, &r);
+}
+
+static PetscErrorCode dilu_apply_pc(PC pc, Vec x, Vec y) { return dilu_run(pc, x, y, 0); }
+static PetscErrorCode dilu_apply_pc_t(PC pc, Vec x, Vec y) { return dilu_run(pc, x, y, 1); }
+
+static PetscErrorCode dilu_shell(PC pc, LinCore *C)
+{
+    TRY(PCSetType(pc, PCSHELL));
+    TRY(PCShellSetContext(pc, C));
+    TRY(PCShellSetSetUp(pc, dilu_setup));
+    TRY(PCShellSetApply(pc, dilu_apply_pc));
+    TRY(PCShellSetApplyTranspose(pc, dilu_apply_pc_t));
+    return PCShellSetName(pc, "DILU");
+}
+
 static PetscErrorCode setup(LinCore *C, const LinSettings *s)
 {
     FvMatrix *M = C->M;
@@ -405,7 +454,8 @@ static PetscErrorCode setup(LinCore *C, const LinSettings *s)
     TRY(KSPSetOptionsPrefix(C->ksp, C->prefix));
     TRY(KSPSetType(C->ksp, s->ksp));
     TRY(KSPGetPC(C->ksp, &pc));
-    TRY(PCSetType(pc, s->pc));
+    if (strcmp(s->pc, DILU_PC) == 0) TRY(dilu_shell(pc, C));
+    else TRY(PCSetType(pc, s->pc));
     TRY(KSPSetTolerances(C->ksp, 0, 0, PETSC_DEFAULT, s->maxiter));
     TRY(KSPSetInitialGuessNonzero(C->ksp, PETSC_TRUE));
     TRY(set_options(C, s));
@@ -414,7 +464,9 @@ static PetscErrorCode setup(LinCore *C, const LinSettings *s)
     PCType pt;
     TRY(KSPGetType(C->ksp, &kt));
     TRY(PCGetType(pc, &pt));
-    snprintf(C->desc, sizeof C->desc, "%s+%s", kt, pt ? pt : "none");
+    const char *pn = pt;
+    if (pt && strcmp(pt, PCSHELL) == 0) TRY(PCShellGetName(pc, &pn));
+    snprintf(C->desc, sizeof C->desc, "%s+%s", kt, pn ? pn : "none");
     return 0;
 }
 
@@ -436,6 +488,7 @@ static void core_free(LinCore *C)
     VecDestroy(&C->x);
     MatDestroy(&C->A);
     capture_end(&c, 0);
+    dilu_free(&C->dilu);
     free(C);
 }
 
@@ -518,6 +571,17 @@ void linsolve_free(LinSystem *L)
 }
 
 const char *linsolve_describe(const LinSystem *L) { return L->core->desc; }
+
+void linsolve_release(LinSystem *L)
+{
+    LinCore *C = L->core;
+    Capture c;
+    capture_begin(&c);
+    KSPReset(C->ksp);
+    capture_end(&c, 0);
+    dilu_free(&C->dilu);
+    C->built = 0;
+}
 
 /* |b - A x|_2, one pass over the matrix.  (The sums are those of a
    product into a vector and a second pass over it, term by term.) */

@@ -14,8 +14,10 @@
 ** then the quoted regular expressions, the last match winning.  solver and
 ** preconditioner take OpenFOAM's names (mapped to PETSc: PCG -> cg,
 ** PBiCG and PBiCGStab -> bcgs, smoothSolver -> richardson with its
-** smoother, GAMG -> richardson with PETSc's gamg; DIC and FDIC -> icc,
-** DILU -> ilu, GAMG -> gamg, diagonal -> jacobi, none) or PETSc's own
+** smoother, GAMG -> richardson with PETSc's gamg; DIC, FDIC and DILU -> OpenFOAM's
+** DILU, ours (dilu.h, a PETSc shell: one double a cell where PETSc's ilu
+** and icc copy the matrix), GAMG -> gamg, diagonal -> jacobi, none) or
+** PETSc's own
 ** type names (gmres, cg, bcgs, ...; hypre, gamg, ilu, sor, ...);
 ** petscOptions is passed to PETSc under the system's own options prefix
 ** ("-Ux_" for Ux), so one system's options never reach another, and it
@@ -106,7 +108,13 @@ int linsolve_solve(LinSystem *L, double *x, LinStats *st, Err *e);
    one after the other on one factorisation. */
 int linsolve_solve_tracked(LinSystem *L, double *x, LinStats *st, Err *e);
 
-/* "cg+icc": the PETSc solver and preconditioner in use (after
+/* Frees the preconditioner's factors and the Krylov work vectors (PETSc's
+   KSPReset) until the next solve rebuilds them, so that a phase between
+   solves (writing a time) can use their memory.  The next solve
+   factorises anew; its result is the one it would have been. */
+void linsolve_release(LinSystem *L);
+
+/* "cg+DILU": the PETSc solver and preconditioner in use (after
    petscOptions). */
 const char *linsolve_describe(const LinSystem *L);
 

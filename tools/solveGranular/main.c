@@ -107,6 +107,7 @@ static void write_time(Run *r, double t)
     int gr = r->g.model == MODEL_GRANULAR;
     Field *f[4] = {&r->rho, &r->U, gr ? &r->T : &r->p, &r->p};
     gran_pressure(&r->g, &r->p);
+    gran_release(&r->g);
     report_vtk(state_write(&r->cs, &r->m, f, gr ? 4 : 3, t, r->tl.index, r->tl.dt, r->tl.dt0, name, &log, &e), &log,
                &e);
     r->written = t;

@@ -557,6 +557,13 @@ int gran_step(Granular *g, double dt, Err *e)
     return 0;
 }
 
+void gran_release(Granular *g)
+{
+    for (int k = 0; k < 3; k++)
+        if (g->L[k]) linsolve_release(g->L[k]);
+    if (g->gm.L) linsolve_release(g->gm.L);
+}
+
 void gran_pressure(Granular *g, Field *p)
 {
     const FvMesh *f = g->f;

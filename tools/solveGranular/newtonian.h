@@ -202,4 +202,10 @@ double gran_mass(const Granular *g);
    with field_init. */
 void gran_pressure(Granular *g, Field *p);
 
+/* Frees the linear solvers' factors and work vectors until the next step
+   rebuilds them (linsolve_release), so that writing a time reuses their
+   memory: the write is the peak otherwise (doc/performance.md, "Memory of
+   model granular in 3-D").  The next step's results are unchanged. */
+void gran_release(Granular *g);
+
 #endif
