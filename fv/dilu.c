@@ -5,8 +5,8 @@
 ** one face side by side); on CSR the same sums run over rows: the
 ** forward sweep takes row i's entries left of the diagonal, the backward
 ** sweep those right of it.  The factorisation needs a_ji beside each
-** a_ij of the lower part, found by a binary search in row j's upper part
-** (columns are sorted, rows short); an entry the pattern lacks is zero.
+** a_ij of the lower part, found by fvmatrix_pos (a binary search in row
+** j: columns are sorted, rows short); an entry the pattern lacks is zero.
 */
 #include "dilu.h"
 
@@ -14,19 +14,6 @@
 #include <stdlib.h>
 
 #include "mem.h"
-
-/* a_{j,i} for i > j, or 0 where (j, i) is not in the pattern. */
-static double upper_value(const FvMatrix *M, int j, int i)
-{
-    int lo = M->diag[j] + 1, hi = M->off[j + 1] - 1;
-    while (lo <= hi) {
-        int mid = lo + (hi - lo) / 2, c = M->col[mid];
-        if (c == i) return M->val[mid];
-        if (c < i) lo = mid + 1;
-        else hi = mid - 1;
-    }
-    return 0;
-}
 
 int dilu_build(Dilu *p, const FvMatrix *M)
 {
@@ -38,8 +25,8 @@ int dilu_build(Dilu *p, const FvMatrix *M)
     for (int i = 0; i < M->nrows; i++) {
         double d = M->val[M->diag[i]];
         for (int k = M->off[i]; k < M->diag[i]; k++) {
-            int j = M->col[k];
-            d -= M->val[k] * upper_value(M, j, i) * p->rd[j];
+            int j = M->col[k], t = fvmatrix_pos(M, j, i);
+            if (t >= 0) d -= M->val[k] * M->val[t] * p->rd[j];
         }
         if (d == 0 || !isfinite(d)) return i + 1;
         p->rd[i] = 1 / d;

@@ -26,11 +26,14 @@ typedef struct Sys {
     Mesh m;
     FvMesh f;
     FvMatrix M;
+    gsl_rng *rng;
 } Sys;
 
-/* nx x ny cells; diagonal neighbours when wide; random values. */
-static void sys_make(Sys *s, int nx, int ny, int wide, gsl_rng *rng)
+/* nx x ny cells; diagonal neighbours when wide; random values from seed. */
+static void sys_make(Sys *s, int nx, int ny, int wide, unsigned long seed)
 {
+    gsl_rng *rng = s->rng = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(rng, seed);
     int n[3] = {nx, ny, 1};
     double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 0.1};
     fixture_block(&s->m, n, lo, hi, 2);
@@ -63,6 +66,7 @@ static void sys_make(Sys *s, int nx, int ny, int wide, gsl_rng *rng)
 
 static void sys_free(Sys *s)
 {
+    gsl_rng_free(s->rng);
     fvmatrix_free(&s->M);
     fvmesh_free(&s->f);
     mesh_free(&s->m);
@@ -95,10 +99,8 @@ static void apply_m(const Dilu *p, const FvMatrix *M, const double *x, double *y
 
 TEST(definition)
 {
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    gsl_rng_set(rng, 7);
     Sys s;
-    sys_make(&s, 9, 7, 1, rng);
+    sys_make(&s, 9, 7, 1, 7);
     const FvMatrix *M = &s.M;
     int n = M->nrows;
     Dilu p = {0, NULL};
@@ -113,7 +115,7 @@ TEST(definition)
     EXPECT(worst < 1e-14, "diag(M) differs from diag(A) by %.3e", worst);
     double *r = malloc((size_t)n * sizeof *r), *w = malloc((size_t)n * sizeof *w), *y = malloc((size_t)n * sizeof *y);
     double *v = malloc((size_t)n * sizeof *v);
-    for (int i = 0; i < n; i++) r[i] = gsl_rng_uniform(rng) - 0.5, v[i] = gsl_rng_uniform(rng) - 0.5;
+    for (int i = 0; i < n; i++) r[i] = gsl_rng_uniform(s.rng) - 0.5, v[i] = gsl_rng_uniform(s.rng) - 0.5;
     dilu_apply(&p, M, r, w);
     apply_m(&p, M, w, y);
     double err = 0, rmax = 0;
@@ -136,17 +138,14 @@ TEST(definition)
     free(r), free(w), free(y), free(v);
     dilu_free(&p);
     sys_free(&s);
-    gsl_rng_free(rng);
 }
 
 /* ILU(0) by elimination on a dense copy, updating only the pattern's
    entries; its pivots are DILU's D where the graph has no triangles. */
 TEST(ilu0_on_faces)
 {
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    gsl_rng_set(rng, 11);
     Sys s;
-    sys_make(&s, 6, 5, 0, rng);
+    sys_make(&s, 6, 5, 0, 11);
     const FvMatrix *M = &s.M;
     int n = M->nrows;
     double *a = calloc((size_t)n * (size_t)n, sizeof *a);
@@ -167,15 +166,12 @@ TEST(ilu0_on_faces)
     free(a);
     dilu_free(&p);
     sys_free(&s);
-    gsl_rng_free(rng);
 }
 
 TEST(zero_pivot)
 {
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    gsl_rng_set(rng, 3);
     Sys s;
-    sys_make(&s, 4, 4, 0, rng);
+    sys_make(&s, 4, 4, 0, 3);
     Dilu p = {0, NULL};
     /* row 5's D is zero: its diagonal and its lower part are */
     for (int k = s.M.off[5]; k <= s.M.diag[5]; k++) s.M.val[k] = 0;
@@ -184,7 +180,6 @@ TEST(zero_pivot)
     EXPECT(dilu_build(&p, &s.M) == 6, "NaN pivot at row 5 not reported");
     dilu_free(&p);
     sys_free(&s);
-    gsl_rng_free(rng);
 }
 
 int main(void)
