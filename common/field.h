@@ -134,6 +134,10 @@ int field_read_time(Field *f, const Mesh *m, const char *case_dir, const char *t
    classes are skipped, except that a wanted one is an error.  Returns the
    count or -1 (nothing allocated). */
 int field_read_dir(const Mesh *m, const char *dir, const char *const *want, int nwant, Field **out, Err *e);
+/* The vol fields of directory dir as field_read_dir would read them,
+   without reading their data: their names and paths into new arrays
+   (io_free_list frees each).  Returns the count or -1. */
+int field_list_dir(const char *dir, const char *const *want, int nwant, char ***names, char ***paths, Err *e);
 /* Frees n fields and the array (f may be NULL; zeroed entries are fine). */
 void field_free_all(Field *f, int n);
 

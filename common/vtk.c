@@ -487,14 +487,18 @@ static void put_types(Out *o, const Grid *g, int binary)
     if (binary) buf_putc(b, '\n');
 }
 
+/* One FIELD array: its name, shape and ntuples tuples. */
+static void put_array(Out *o, const Arr *a, int ntuples, int binary)
+{
+    put_name(&o->b, a->name);
+    buf_printf(&o->b, " %d %d double\n", a->width, ntuples);
+    put_doubles(o, a->v, (size_t)ntuples, a->width, binary);
+}
+
 static void put_arrays(Out *o, const Arr *a, int na, int ntuples, int binary)
 {
     buf_printf(&o->b, "FIELD FieldData %d\n", na);
-    for (int i = 0; i < na; i++) {
-        put_name(&o->b, a[i].name);
-        buf_printf(&o->b, " %d %d double\n", a[i].width, ntuples);
-        put_doubles(o, a[i].v, (size_t)ntuples, a[i].width, binary);
-    }
+    for (int i = 0; i < na; i++) put_array(o, &a[i], ntuples, binary);
 }
 
 /* Distinct written points of cell c into out; returns their count.
@@ -546,65 +550,90 @@ static double *point_average(const Grid *g, const Arr *a)
     return acc;
 }
 
-static void put_point_data(Out *o, const Grid *g, const Arr *a, int na, int binary)
+/* ---- a file written one field at a time ---- */
+
+struct VtkFile {
+    IoStream s;
+    Out out;
+    Grid g;         /* its connectivity is freed once written, unless point data needs it */
+    const Mesh *m;
+    int patch;      /* -1: the internal mesh */
+    int nfields, nput, binary, point_data;
+    Arr *pa;        /* point data: the averages of the fields put so far (names and values owned) */
+    char *path;     /* for messages */
+};
+
+static void file_free(VtkFile *f)
 {
-    buf_printf(&o->b, "POINT_DATA %d\n", g->np);
-    Arr *pa = MEM_NEW(Arr, na);
-    for (int i = 0; i < na; i++) {
-        pa[i] = a[i];
-        pa[i].v = point_average(g, &a[i]);
+    grid_free(&f->g);
+    buf_free(&f->out.b);
+    for (int i = 0; i < f->nput && f->pa; i++) {
+        free((char *)f->pa[i].name);
+        free((double *)f->pa[i].v);
     }
-    put_arrays(o, pa, na, g->np, binary);
-    for (int i = 0; i < na; i++) free((double *)pa[i].v);
-    free(pa);
+    free(f->pa);
+    free(f->path);
+    free(f);
 }
 
-/* The whole file into out. */
-static void put_dataset(Out *out, const Mesh *m, const Grid *g, int polydata, const Arr *a, int na,
-                        const VtkOpts *o)
+/* Opens path and writes the header, the points, the cells (and their
+   types) and the heading of the cell data from g, which the file takes
+   over; NULL with e filled when path cannot be opened. */
+static VtkFile *file_begin(const char *path, const Mesh *m, int patch, Grid *g, int nfields, const VtkOpts *o,
+                           Err *e)
 {
-    int bin = o->binary;
-    Buf *b = &out->b;
+    VtkFile *f = MEM_NEW(VtkFile, 1);
+    f->g = *g;
+    memset(g, 0, sizeof *g);
+    f->m = m;
+    f->patch = patch;
+    f->nfields = nfields;
+    f->binary = o->binary;
+    f->point_data = o->point_data && nfields > 0;
+    f->path = mem_strdup(path);
+    if (io_stream_open(&f->s, path, e)) {
+        file_free(f);
+        return NULL;
+    }
+    f->out.s = &f->s;
+    buf_init(&f->out.b);
+    int bin = o->binary, polydata = patch >= 0;
+    Buf *b = &f->out.b;
     buf_puts(b, "# vtk DataFile Version 2.0\n");
     put_title(b, o->title);
     buf_puts(b, bin ? "BINARY\n" : "ASCII\n");
     buf_puts(b, polydata ? "DATASET POLYDATA\n" : "DATASET UNSTRUCTURED_GRID\n");
     buf_puts(b, "FIELD FieldData 1\nTimeValue 1 1 double\n");
-    put_doubles(out, &o->time, 1, 1, bin);
-    put_points(out, m, g, bin);
-    put_cells(out, g, polydata ? "POLYGONS" : "CELLS", bin);
-    if (!polydata) put_types(out, g, bin);
-    if (na == 0) return;
-    buf_printf(b, "CELL_DATA %d\n", g->nc);
-    put_arrays(out, a, na, g->nc, bin);
-    if (o->point_data) put_point_data(out, g, a, na, bin);
+    put_doubles(&f->out, &o->time, 1, 1, bin);
+    put_points(&f->out, m, &f->g, bin);
+    put_cells(&f->out, &f->g, polydata ? "POLYGONS" : "CELLS", bin);
+    if (!polydata) put_types(&f->out, &f->g, bin);
+    if (nfields > 0) buf_printf(b, "CELL_DATA %d\nFIELD FieldData %d\n", f->g.nc, nfields);
+    if (f->point_data) {
+        f->pa = MEM_NEW(Arr, nfields);
+    } else { /* the fields to come need only the count */
+        int nc = f->g.nc;
+        grid_free(&f->g);
+        f->g.nc = nc;
+    }
+    return f;
+}
+
+static int check_field(const char *path, const Field *f, int index, int count, Err *e)
+{
+    if (!f->name || !f->name[0]) return err_set(e, path, 0, "field %d has no name", index);
+    if (f->width != 1 && f->width != 3)
+        return err_set(e, path, 0, "field '%s': width %d, expected 1 or 3", f->name, f->width);
+    if (count >= 0 && f->ncells != count)
+        return err_set(e, path, 0, "field '%s' has %d cells, the mesh %d", f->name, f->ncells, count);
+    return 0;
 }
 
 static int check_fields(const char *path, const Field *f, int n, int count, Err *e)
 {
-    for (int i = 0; i < n; i++) {
-        if (!f[i].name || !f[i].name[0])
-            return err_set(e, path, 0, "field %d has no name", i);
-        if (f[i].width != 1 && f[i].width != 3)
-            return err_set(e, path, 0, "field '%s': width %d, expected 1 or 3", f[i].name, f[i].width);
-        if (count >= 0 && f[i].ncells != count)
-            return err_set(e, path, 0, "field '%s' has %d cells, the mesh %d", f[i].name, f[i].ncells, count);
-    }
+    for (int i = 0; i < n; i++)
+        if (check_field(path, &f[i], i, count, e)) return -1;
     return 0;
-}
-
-/* The file at path, atomically, made as it is written (Out). */
-static int write_grid(const char *path, const Mesh *m, const Grid *g, int polydata, const Arr *a,
-                      int na, const VtkOpts *o, Err *e)
-{
-    IoStream s;
-    if (io_stream_open(&s, path, e)) return -1;
-    Out out = {{NULL, 0, 0}, &s};
-    buf_init(&out.b);
-    put_dataset(&out, m, g, polydata, a, na, o);
-    io_stream_put(&s, out.b.p, out.b.n);
-    buf_free(&out.b);
-    return io_stream_close(&s, e);
 }
 
 static const VtkOpts *opts_or_default(const VtkOpts *o, VtkOpts *def)
@@ -614,67 +643,126 @@ static const VtkOpts *opts_or_default(const VtkOpts *o, VtkOpts *def)
     return def;
 }
 
-int vtk_write_internal(const char *path, const Mesh *m, const Field *fields, int nfields,
-                       const VtkOpts *o, Err *e)
+VtkFile *vtk_begin_internal(const char *path, const Mesh *m, int nfields, const VtkOpts *o, Err *e)
 {
     VtkOpts def;
     o = opts_or_default(o, &def);
-    if (check_fields(path, fields, nfields, m->ncells, e)) return -1;
-    if (o->point_data && nfields > 0 && !m->cell_vol)
-        return err_set(e, path, 0, "point data needs the cell volumes (mesh_geometry)");
+    if (o->point_data && nfields > 0 && !m->cell_vol) {
+        err_set(e, path, 0, "point data needs the cell volumes (mesh_geometry)");
+        return NULL;
+    }
     Grid g;
     memset(&g, 0, sizeof g);
     int axis = mesh_empty_axis(m);
-    int rc = axis >= 0 ? grid_2d(m, axis, &g, path, o->mesh_name ? o->mesh_name : path, e) : grid_3d(m, &g, path, e);
-    if (rc == 0) {
-        Arr *a = MEM_NEW(Arr, nfields);
-        for (int i = 0; i < nfields; i++) a[i] = (Arr){fields[i].name, fields[i].width, fields[i].v};
-        if (o->point_data && nfields > 0) {
-            g.w = MEM_NEW(double, m->ncells);
-            memcpy(g.w, m->cell_vol, (size_t)m->ncells * sizeof(double));
-        }
-        rc = write_grid(path, m, &g, 0, a, nfields, o, e);
-        free(a);
+    if (axis >= 0 ? grid_2d(m, axis, &g, path, o->mesh_name ? o->mesh_name : path, e) : grid_3d(m, &g, path, e)) {
+        grid_free(&g);
+        return NULL;
     }
-    grid_free(&g);
-    return rc;
+    if (o->point_data && nfields > 0) {
+        g.w = MEM_NEW(double, m->ncells);
+        memcpy(g.w, m->cell_vol, (size_t)m->ncells * sizeof(double));
+    }
+    return file_begin(path, m, -1, &g, nfields, o, e);
 }
 
-int vtk_write_patch(const char *path, const Mesh *m, int patch, const Field *fields, int nfields,
-                    const VtkOpts *o, Err *e)
+VtkFile *vtk_begin_patch(const char *path, const Mesh *m, int patch, int nfields, const VtkOpts *o, Err *e)
 {
     VtkOpts def;
     o = opts_or_default(o, &def);
-    if (patch < 0 || patch >= m->npatches)
-        return err_set(e, path, 0, "patch %d out of range (%d patches)", patch, m->npatches);
-    if (check_fields(path, fields, nfields, -1, e)) return -1;
-    if (o->point_data && nfields > 0 && !m->face_area)
-        return err_set(e, path, 0, "point data needs the face areas (mesh_geometry)");
+    if (patch < 0 || patch >= m->npatches) {
+        err_set(e, path, 0, "patch %d out of range (%d patches)", patch, m->npatches);
+        return NULL;
+    }
+    if (o->point_data && nfields > 0 && !m->face_area) {
+        err_set(e, path, 0, "point data needs the face areas (mesh_geometry)");
+        return NULL;
+    }
     const Patch *pa = &m->patches[patch];
     int *faces = MEM_NEW(int, pa->size);
     for (int i = 0; i < pa->size; i++) faces[i] = pa->start + i;
     Grid g;
     memset(&g, 0, sizeof g);
     int rc = grid_polygons(m, faces, pa->size, 0, &g, path, e);
-    if (rc == 0) {
-        Arr *a = MEM_NEW(Arr, nfields);
-        for (int i = 0; i < nfields; i++) {
-            size_t nv = (size_t)pa->size * (size_t)fields[i].width;
-            double *v = MEM_NEW(double, nv);
-            field_patch_values(&fields[i], m, patch, v);
-            a[i] = (Arr){fields[i].name, fields[i].width, v};
-        }
-        if (o->point_data && nfields > 0) {
-            g.w = MEM_NEW(double, pa->size);
-            for (int i = 0; i < pa->size; i++) g.w[i] = geom_norm(m->face_area + 3 * (size_t)faces[i]);
-        }
-        rc = write_grid(path, m, &g, 1, a, nfields, o, e);
-        for (int i = 0; i < nfields; i++) free((double *)a[i].v);
-        free(a);
+    if (rc == 0 && o->point_data && nfields > 0) {
+        g.w = MEM_NEW(double, pa->size);
+        for (int i = 0; i < pa->size; i++) g.w[i] = geom_norm(m->face_area + 3 * (size_t)faces[i]);
     }
     free(faces);
-    grid_free(&g);
+    if (rc) {
+        grid_free(&g);
+        return NULL;
+    }
+    return file_begin(path, m, patch, &g, nfields, o, e);
+}
+
+int vtk_put_field(VtkFile *f, const Field *fl, Err *e)
+{
+    if (f->nput == f->nfields)
+        return err_set(e, f->path, 0, "field '%s': the file has room for %d fields", fl->name ? fl->name : "",
+                       f->nfields);
+    if (check_field(f->path, fl, f->nput, f->patch < 0 ? f->m->ncells : -1, e)) return -1;
+    double *pv = NULL;
+    if (f->patch >= 0) {
+        pv = MEM_NEW(double, (size_t)f->g.nc * (size_t)fl->width);
+        field_patch_values(fl, f->m, f->patch, pv);
+    }
+    Arr a = {fl->name, fl->width, pv ? pv : fl->v};
+    put_array(&f->out, &a, f->g.nc, f->binary);
+    if (f->point_data) f->pa[f->nput] = (Arr){mem_strdup(fl->name), fl->width, point_average(&f->g, &a)};
+    f->nput++;
+    free(pv);
+    return 0;
+}
+
+int vtk_end(VtkFile *f, Err *e)
+{
+    if (f->nput < f->nfields) {
+        err_set(e, f->path, 0, "%d of the file's %d fields written", f->nput, f->nfields);
+        vtk_abort(f);
+        return -1;
+    }
+    if (f->point_data) {
+        buf_printf(&f->out.b, "POINT_DATA %d\n", f->g.np);
+        put_arrays(&f->out, f->pa, f->nfields, f->g.np, f->binary);
+    }
+    io_stream_put(&f->s, f->out.b.p, f->out.b.n);
+    int rc = io_stream_close(&f->s, e);
+    file_free(f);
     return rc;
+}
+
+void vtk_abort(VtkFile *f)
+{
+    io_stream_abort(&f->s);
+    file_free(f);
+}
+
+/* All fields into a file begun (or NULL: its error is in e). */
+static int write_all(VtkFile *f, const Field *fields, int n, Err *e)
+{
+    if (!f) return -1;
+    for (int i = 0; i < n; i++)
+        if (vtk_put_field(f, &fields[i], e)) {
+            vtk_abort(f);
+            return -1;
+        }
+    return vtk_end(f, e);
+}
+
+int vtk_write_internal(const char *path, const Mesh *m, const Field *fields, int nfields,
+                       const VtkOpts *o, Err *e)
+{
+    if (check_fields(path, fields, nfields, m->ncells, e)) return -1;
+    return write_all(vtk_begin_internal(path, m, nfields, o, e), fields, nfields, e);
+}
+
+int vtk_write_patch(const char *path, const Mesh *m, int patch, const Field *fields, int nfields,
+                    const VtkOpts *o, Err *e)
+{
+    if (patch < 0 || patch >= m->npatches)
+        return err_set(e, path, 0, "patch %d out of range (%d patches)", patch, m->npatches);
+    if (check_fields(path, fields, nfields, -1, e)) return -1;
+    return write_all(vtk_begin_patch(path, m, patch, nfields, o, e), fields, nfields, e);
 }
 
 /* ---- series ---- */

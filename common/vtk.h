@@ -16,7 +16,8 @@
 ** Boundary patches go to separate POLYDATA files (POLYGONS, values from
 ** field_patch_values).  A .vtk.series file (JSON, ParaView's format) lists
 ** the files with their time values.  Every file is written atomically,
-** as it is made (an IoStream, io.h: never whole in memory).
+** as it is made (an IoStream, io.h: never whole in memory), and may be
+** given its fields one at a time (VtkFile).
 ** Geometry: point data needs m->cell_vol (internal) or m->face_area
 ** (patches), from mesh_geometry; cell->face addressing is used when present
 ** and built internally otherwise.
@@ -47,6 +48,21 @@ int vtk_write_internal(const char *path, const Mesh *m, const Field *fields, int
 /* One patch as POLYDATA with the boundary values of the fields. */
 int vtk_write_patch(const char *path, const Mesh *m, int patch, const Field *fields, int nfields,
                     const VtkOpts *o, Err *e);
+
+/* A file written one field at a time, so that a caller reading fields
+   from disk holds one of them at once: vtk_begin_internal or
+   vtk_begin_patch writes the geometry (and frees its connectivity unless
+   point data needs it), vtk_put_field each of the nfields fields in turn,
+   vtk_end renames the finished file into place (vtk_abort, or an error of
+   vtk_end, removes it instead).  The files are those of
+   vtk_write_internal / vtk_write_patch, byte for byte.  A begin returns
+   NULL with e filled; after a failed vtk_put_field call vtk_abort. */
+typedef struct VtkFile VtkFile;
+VtkFile *vtk_begin_internal(const char *path, const Mesh *m, int nfields, const VtkOpts *o, Err *e);
+VtkFile *vtk_begin_patch(const char *path, const Mesh *m, int patch, int nfields, const VtkOpts *o, Err *e);
+int vtk_put_field(VtkFile *f, const Field *field, Err *e);
+int vtk_end(VtkFile *f, Err *e);
+void vtk_abort(VtkFile *f);
 
 typedef struct VtkSeriesEntry {
     const char *name;  /* file name relative to the series file */

@@ -151,36 +151,107 @@ static char *vtk_file(const char *dir, const char *base, long index)
 /* Patch p gets a file of its own unless it is of type empty. */
 static int patch_written(const VtkCase *v, int p) { return v->boundary && !mesh_patch_is_empty(&v->m->patches[p]); }
 
-static int write_patch(const VtkCase *v, int p, long index, VtkOpts *o, const Field *f, int nf, Buf *log, Err *e)
+/* The fields of one time as the writer takes them: given in memory, or
+   the files at path[k], read one at a time. */
+typedef struct Source {
+    const Field *given;
+    char **path;
+    const Mesh *m;
+} Source;
+
+/* Field k into *f (tmp holds a field read, to be freed by the caller). */
+static int source_get(const Source *s, int k, Field *tmp, const Field **f, Err *e)
 {
-    const Patch *pa = &v->m->patches[p];
-    char *dir = io_join("VTK", pa->name), *adir = io_join(v->case_dir, dir);
-    char *rel = vtk_file(dir, pa->name, index), *path = io_join(v->case_dir, rel);
-    o->title = pa->name;
-    int rc = io_mkdir_p(adir, e);
-    if (rc == 0) rc = vtk_write_patch(path, v->m, p, f, nf, o, e);
-    if (rc == 0) buf_printf(log, "    Boundary  : %s\n", rel);
-    free(dir);
-    free(adir);
-    free(rel);
+    if (s->given) {
+        *f = &s->given[k];
+        return 0;
+    }
+    if (field_read(tmp, s->m, s->path[k], e)) return -1;
+    *f = tmp;
+    return 0;
+}
+
+/* The relative names of time t's files: [0] the internal mesh, then one
+   per written patch (its patch number into patch[]); the count. */
+static int time_files(const VtkCase *v, int t, char **rel, int *patch)
+{
+    int n = 0;
+    rel[n] = vtk_file("VTK", v->name, v->index[t]);
+    patch[n++] = -1;
+    for (int p = 0; p < v->m->npatches; p++) {
+        if (!patch_written(v, p)) continue;
+        char *dir = io_join("VTK", v->m->patches[p].name);
+        rel[n] = vtk_file(dir, v->m->patches[p].name, v->index[t]);
+        patch[n++] = p;
+        free(dir);
+    }
+    return n;
+}
+
+/* Begins file k of time t (its patch directory made first). */
+static VtkFile *begin_file(const VtkCase *v, const char *rel, int patch, int nf, const VtkOpts *o, Err *e)
+{
+    char *path = io_join(v->case_dir, rel);
+    VtkFile *f = NULL;
+    if (patch < 0) {
+        f = vtk_begin_internal(path, v->m, nf, o, e);
+    } else {
+        char *dir = io_join("VTK", v->m->patches[patch].name), *adir = io_join(v->case_dir, dir);
+        VtkOpts po = *o;
+        po.title = v->m->patches[patch].name;
+        if (!io_mkdir_p(adir, e)) f = vtk_begin_patch(path, v->m, patch, nf, &po, e);
+        free(dir);
+        free(adir);
+    }
     free(path);
+    return f;
+}
+
+/* Every file of the t-th time (the internal mesh, each patch that is not
+   empty), all begun first and then given the fields one at a time: a
+   time read from disk holds one field in memory, not all of them. */
+static int write_files(const VtkCase *v, int t, const Source *src, int nf, Buf *log, Err *e)
+{
+    int np = v->m->npatches + 1, *patch = MEM_NEW(int, np);
+    char **rel = MEM_NEW(char *, np);
+    VtkFile **file = MEM_NEW(VtkFile *, np);
+    int n = time_files(v, t, rel, patch), rc = 0, k = 0;
+    VtkOpts o = v->opts;
+    o.time = v->times.all[t].value;
+    o.title = v->name;
+    for (; k < n && (file[k] = begin_file(v, rel[k], patch[k], nf, &o, e)); k++) continue;
+    rc = k < n ? -1 : 0;
+    for (int i = 0; i < nf && rc == 0; i++) {
+        Field tmp;
+        const Field *f;
+        if (source_get(src, i, &tmp, &f, e)) {
+            rc = -1;
+            break;
+        }
+        for (int j = 0; j < n && rc == 0; j++) rc = vtk_put_field(file[j], f, e);
+        if (f == &tmp) field_free(&tmp);
+    }
+    for (int j = 0; j < k; j++) {
+        if (rc) {
+            vtk_abort(file[j]);
+            continue;
+        }
+        rc = vtk_end(file[j], e);
+        if (rc == 0) buf_printf(log, "    %s: %s\n", patch[j] < 0 ? "Internal  " : "Boundary  ", rel[j]);
+        else
+            for (int q = j + 1; q < k; q++) vtk_abort(file[q]);
+        if (rc) break;
+    }
+    io_free_list(rel, n);
+    free(patch);
+    free(file);
     return rc;
 }
 
 int vtkcase_write_time(const VtkCase *v, int i, const Field *f, int nf, Buf *log, Err *e)
 {
-    int t = v->times.sel[i];
-    VtkOpts o = v->opts;
-    o.time = v->times.all[t].value;
-    o.title = v->name;
-    char *rel = vtk_file("VTK", v->name, v->index[t]), *path = io_join(v->case_dir, rel);
-    int rc = vtk_write_internal(path, v->m, f, nf, &o, e);
-    if (rc == 0) buf_printf(log, "    Internal  : %s\n", rel);
-    free(rel);
-    free(path);
-    for (int p = 0; p < v->m->npatches && rc == 0; p++)
-        if (patch_written(v, p)) rc = write_patch(v, p, v->index[t], &o, f, nf, log, e);
-    return rc;
+    Source src = {f, NULL, v->m};
+    return write_files(v, v->times.sel[i], &src, nf, log, e);
 }
 
 /* <dir>/<base>.vtk.series listing the times whose <base>_<index>.vtk exist. */
@@ -359,14 +430,20 @@ static int time_current(const VtkCase *v, int t, const Series *old)
     return ok;
 }
 
-/* Reads the fields of the t-th time and writes its files. */
+/* Writes the files of the t-th time from its fields on disk, read one at
+   a time (write_files). */
 static int convert_time(const VtkCase *v, int t, Buf *scratch, Err *e)
 {
-    Field *f;
-    int nf = vtkcase_read_fields(v, t, NULL, 0, &f, scratch, e);
+    char *dir = io_join(v->case_dir, v->times.all[t].name), **names = NULL, **paths = NULL;
+    int nf = io_is_dir(dir) ? field_list_dir(dir, NULL, 0, &names, &paths, e) : 0;
+    free(dir);
     if (nf < 0) return -1;
-    int rc = vtkcase_write_time(v, t, f, nf, scratch, e);
-    field_free_all(f, nf);
+    Source src = {NULL, paths, v->m};
+    int rc = write_files(v, t, &src, nf, scratch, e);
+    if (nf > 0 || names) {
+        io_free_list(names, nf);
+        io_free_list(paths, nf);
+    }
     return rc;
 }
 

@@ -695,6 +695,94 @@ TEST(bad_fields)
     mesh_free(&m);
 }
 
+/* A file given its fields one at a time (VtkFile) is the file of
+   vtk_write_internal / vtk_write_patch byte for byte, with point data,
+   binary and ascii; one given too few fields is not left behind, nor is
+   one aborted; a field too many is refused. */
+static int same_file(const char *a, const char *b)
+{
+    Buf x = slurp(a), y = slurp(b);
+    int same = x.n > 0 && x.n == y.n && !memcmp(x.p, y.p, x.n);
+    buf_free(&x);
+    buf_free(&y);
+    return same;
+}
+
+static int streamed(VtkFile *f, const Field *fl, int n, Err *e)
+{
+    if (!f) return -1;
+    for (int i = 0; i < n; i++)
+        if (vtk_put_field(f, &fl[i], e)) {
+            vtk_abort(f);
+            return -1;
+        }
+    return vtk_end(f, e);
+}
+
+/* Names in the test directory that start with prefix (temporary files
+   start with "."). */
+static int count_named(const char *prefix)
+{
+    char **names;
+    Err e;
+    int n = io_list_dir(test_tmpdir(), &names, &e), k = 0;
+    for (int i = 0; i < n; i++) k += !strncmp(names[i], prefix, strlen(prefix));
+    if (n > 0) io_free_list(names, n);
+    return k;
+}
+
+TEST(streamed_fields)
+{
+    static const double xs[] = {0, 1, 4};
+    Mesh m;
+    Box b = {2, 1, 1, xs, Y3, Z3, 0, 0};
+    box_mesh(&m, &b);
+    mesh_geometry(&m);
+    double pv[2] = {1, 5}, uv[6] = {1, 0, 0, 5, 0, 2};
+    Field fl[2];
+    make_field(&fl[0], &m, "p", 1, pv);
+    make_field(&fl[1], &m, "U", 3, uv);
+    char *whole = path_of("whole.vtk"), *part = path_of("part.vtk");
+    Err e;
+    for (int bin = 0; bin < 2; bin++)
+        for (int pd = 0; pd < 2; pd++) {
+            VtkOpts o;
+            vtk_opts_init(&o);
+            o.binary = bin, o.point_data = pd, o.time = 0.25;
+            EXPECT(vtk_write_internal(whole, &m, fl, 2, &o, &e) == 0, "%s", e.msg);
+            EXPECT(streamed(vtk_begin_internal(part, &m, 2, &o, &e), fl, 2, &e) == 0, "%s", e.msg);
+            EXPECT(same_file(whole, part), "internal, binary %d, point data %d: the files differ", bin, pd);
+            EXPECT(vtk_write_patch(whole, &m, 0, fl, 2, &o, &e) == 0, "%s", e.msg);
+            EXPECT(streamed(vtk_begin_patch(part, &m, 0, 2, &o, &e), fl, 2, &e) == 0, "%s", e.msg);
+            EXPECT(same_file(whole, part), "patch, binary %d, point data %d: the files differ", bin, pd);
+        }
+    char *gone = path_of("gone.vtk");
+    VtkFile *f = vtk_begin_internal(gone, &m, 2, NULL, &e);
+    EXPECT(f && vtk_put_field(f, &fl[0], &e) == 0, "first field refused");
+    EXPECT(f && vtk_end(f, &e) == -1, "a file with one of its two fields accepted");
+    CONTAINS(e.msg, "gone.vtk: 1 of the file's 2 fields written");
+    f = vtk_begin_internal(gone, &m, 1, NULL, &e);
+    EXPECT(f && vtk_put_field(f, &fl[1], &e) == 0, "first field refused");
+    EXPECT(f && vtk_put_field(f, &fl[0], &e) == -1, "a field too many accepted");
+    CONTAINS(e.msg, "field 'p': the file has room for 1 fields");
+    if (f) vtk_abort(f);
+    f = vtk_begin_patch(gone, &m, 1, 1, NULL, &e);
+    fl[0].width = 2;
+    EXPECT(f && vtk_put_field(f, &fl[0], &e) == -1, "width 2 accepted");
+    CONTAINS(e.msg, "field 'p': width 2, expected 1 or 3");
+    fl[0].width = 1;
+    if (f) vtk_abort(f);
+    EXPECT(!io_exists(gone) && count_named(".gone.vtk") == 0, "an unfinished file or its temporary is left");
+    EXPECT(!vtk_begin_patch(gone, &m, 5, 1, NULL, &e), "patch 5 accepted");
+    CONTAINS(e.msg, "patch 5 out of range (2 patches)");
+    free(gone);
+    free(whole);
+    free(part);
+    free_field(&fl[0]);
+    free_field(&fl[1]);
+    mesh_free(&m);
+}
+
 TEST(series_json)
 {
     char *path = path_of("s.vtk.series");
@@ -727,6 +815,7 @@ int main(void)
     RUN(patch_polydata);
     RUN(patch_point_data_area_weighted);
     RUN(bad_fields);
+    RUN(streamed_fields);
     RUN(series_json);
     return test_summary();
 }

@@ -52,7 +52,9 @@ static int check_initial(const Granular *g, Err *e)
     return 0;
 }
 
-static void alloc_model(Granular *g)
+/* The arrays the steps write (granmodel_alloc: after the set-up's
+   geometry is freed, so that the two are never alive together). */
+void granmodel_alloc(Granular *g)
 {
     GranModel *m = &g->gm;
     size_t nc = (size_t)g->f->ncells + 1, nf = (size_t)g->f->nfaces + 1, nb = (size_t)g->f->nboundary + 1;
@@ -64,7 +66,10 @@ static void alloc_model(Granular *g)
     for (size_t i = 0; i < sizeof bnd / sizeof bnd[0]; i++) *bnd[i] = mem_calloc(nb, sizeof(double));
     m->ub = mem_calloc(3 * nb, sizeof(double));
     m->jac = g->force; /* the core's work array, free when the heating runs (newtonian.c) */
-    m->jmet = mem_calloc(6 * nc, sizeof(double));
+    /* partialSlip's Coulomb bound (eq. 2.35): the wall pressure (the
+       core's boundary pressures, g->xbr when the momentum is assembled)
+       and the wall viscosity eta_f of the boundary faces */
+    bc_set_wall_state(&g->bc_U, g->xbr, m->eta_f + g->f->ninternal);
     if (g->gravity != GRAN_WELL_BALANCED) return;
     double **prof[] = {&m->prof_v, &m->prof_p, &m->prof_theta};
     for (size_t i = 0; i < sizeof prof / sizeof prof[0]; i++) *prof[i] = mem_calloc(nc, sizeof(double));
@@ -181,15 +186,11 @@ int granmodel_init(Granular *g, Field *T, const Dict *fvsolution, Err *e)
     GranModel *m = &g->gm;
     m->T = T;
     if (bc_init(&m->bc_T, T, g->f, e)) return -1;
-    alloc_model(g);
+    m->jmet = mem_calloc(6 * ((size_t)g->f->ncells + 1), sizeof(double));
     if (g->jacobian == GRAN_JAC_LSQ) m->lsq = mem_calloc(3 * (size_t)g->f->nfaces + 1, sizeof(double));
     jacobian_metric(g, m->jmet, m->lsq);
     if (check_initial(g, e)) return -1;
     m->solved = !g->pr.freezeT;
-    /* partialSlip's Coulomb bound (eq. 2.35): the wall pressure (the
-       core's boundary pressures, g->xbr when the momentum is assembled)
-       and the wall viscosity eta_f of the boundary faces */
-    bc_set_wall_state(&g->bc_U, g->xbr, m->eta_f + g->f->ninternal);
     return m->solved ? init_solver(g, fvsolution, e) : 0;
 }
 

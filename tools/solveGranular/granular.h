@@ -111,11 +111,15 @@ typedef struct GranModel {
 } GranModel;
 
 /* Sets up the model's part on g (after the core's boundary conditions and
-   matrix pattern exist): T's boundary conditions and checks, the arrays,
-   the matrix and the solver of Theta from fvSolution (skipped with
+   matrix pattern exist): T's boundary conditions and checks, the
+   heating's metric, the matrix and the solver of Theta from fvSolution (skipped with
    freezeT).  The initial c must lie in [0, cMax - deltaC] and T be
    positive and finite: else an error naming the field and the cell. */
 int granmodel_init(struct Granular *g, Field *T, const Dict *fvsolution, Err *e);
+/* The model's arrays that the steps write (closures, boundary values, the
+   rest profiles), and partialSlip's wall state: by gran_alloc, after the
+   core's work arrays. */
+void granmodel_alloc(struct Granular *g);
 void granmodel_free(GranModel *m);
 
 /* The closures at the current state: cell values, boundary values, face

@@ -203,6 +203,7 @@ static void read_case(Run *r, const Args *a, Interp *ip, FvMesh *fm, Start *st)
     if (gran_init(&r->g, fm, ip, &pr, &sch, &r->rho, &r->U, gr ? &r->T : NULL, sol, &e)) err_die(&e);
     if (gr) print_model(&pr);
     fvmesh_end_setup(fm); /* the set-up's geometry, never read by the steps */
+    gran_alloc(&r->g);
     r->g.time = st->value;
     double zero = 0;
     field_init(&r->p, &r->m, "p", 1, &zero, "calculated");

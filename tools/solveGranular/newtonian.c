@@ -241,10 +241,15 @@ int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProp
         (bc_check_open(&g->bc_rho, &g->bc_U, rho, U, sqrt(pr->RsT), e) || check_partial_slip(g, U, e)))
         return -1;
     mark_walls(g);
-    alloc_work(g);
     g->flux_skip = flux_skip(f);
     if (linsolve_init(e) || init_solvers(g, fvsolution, e)) return -1;
     return g->model == MODEL_GRANULAR ? granmodel_init(g, T, fvsolution, e) : 0;
+}
+
+void gran_alloc(Granular *g)
+{
+    alloc_work(g);
+    if (g->model == MODEL_GRANULAR) granmodel_alloc(g);
 }
 
 void gran_free(Granular *g)

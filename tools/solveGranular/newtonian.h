@@ -180,6 +180,13 @@ int gran_read_schemes(const Dict *fvschemes, GranSchemes *sch, Err *e);
    Newtonian: T is NULL. */
 int gran_init(Granular *g, const FvMesh *f, const Interp *ip, const GranularProps *pr, const GranSchemes *sch,
               Field *rho, Field *U, Field *T, const Dict *fvsolution, Err *e);
+/* The arrays the steps write: the work arrays and model granular's state
+   (closures, boundary values, rest profiles).  Call it once after
+   gran_init and fvmesh_end_setup, before the first step: those arrays and
+   the set-up's geometry are then never alive together (together they were
+   the run's peak in 3-D, doc/performance.md, "Memory of model granular in
+   3-D"). */
+void gran_alloc(Granular *g);
 void gran_free(Granular *g);
 
 /* The face fluxes phi of the current velocity. */

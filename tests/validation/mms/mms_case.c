@@ -234,6 +234,7 @@ void mms_case_init(MmsCase *k, const Study *s, int N)
     k->sol = dict_parse(FVSOLUTION, strlen(FVSOLUTION), "fvSolution", &e);
     if (!k->sol || gran_init(&k->g, &k->f, &k->ip, &pr, &sch, &k->rho, &k->U, s->granular ? &k->T : NULL, k->sol, &e))
         die("gran_init", &e);
+    gran_alloc(&k->g);
     k->g.src = (GranSource){source_steady, &k->src};
 }
 
