@@ -759,8 +759,6 @@ int vtk_write_internal(const char *path, const Mesh *m, const Field *fields, int
 int vtk_write_patch(const char *path, const Mesh *m, int patch, const Field *fields, int nfields,
                     const VtkOpts *o, Err *e)
 {
-    if (patch < 0 || patch >= m->npatches)
-        return err_set(e, path, 0, "patch %d out of range (%d patches)", patch, m->npatches);
     if (check_fields(path, fields, nfields, -1, e)) return -1;
     return write_all(vtk_begin_patch(path, m, patch, nfields, o, e), fields, nfields, e);
 }

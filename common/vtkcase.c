@@ -231,16 +231,13 @@ static int write_files(const VtkCase *v, int t, const Source *src, int nf, Buf *
         for (int j = 0; j < n && rc == 0; j++) rc = vtk_put_field(file[j], f, e);
         if (f == &tmp) field_free(&tmp);
     }
-    for (int j = 0; j < k; j++) {
+    for (int j = 0; j < k; j++) { /* after an error, the rest are removed */
         if (rc) {
             vtk_abort(file[j]);
             continue;
         }
         rc = vtk_end(file[j], e);
         if (rc == 0) buf_printf(log, "    %s: %s\n", patch[j] < 0 ? "Internal  " : "Boundary  ", rel[j]);
-        else
-            for (int q = j + 1; q < k; q++) vtk_abort(file[q]);
-        if (rc) break;
     }
     io_free_list(rel, n);
     free(patch);
@@ -440,10 +437,8 @@ static int convert_time(const VtkCase *v, int t, Buf *scratch, Err *e)
     if (nf < 0) return -1;
     Source src = {NULL, paths, v->m};
     int rc = write_files(v, t, &src, nf, scratch, e);
-    if (nf > 0 || names) {
-        io_free_list(names, nf);
-        io_free_list(paths, nf);
-    }
+    io_free_list(names, nf);
+    io_free_list(paths, nf);
     return rc;
 }
 

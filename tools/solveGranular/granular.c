@@ -52,8 +52,8 @@ static int check_initial(const Granular *g, Err *e)
     return 0;
 }
 
-/* The arrays the steps write (granmodel_alloc: after the set-up's
-   geometry is freed, so that the two are never alive together). */
+/* The arrays the steps write; gran_alloc calls it after the set-up's
+   geometry is freed, so that the two are never alive together. */
 void granmodel_alloc(Granular *g)
 {
     GranModel *m = &g->gm;
